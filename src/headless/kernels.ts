@@ -1,0 +1,62 @@
+/**
+ * Test kernels: a float target filled by one GLSL function of the renderer
+ * (a sampler or a pdf), so browser tests can check the shader code itself
+ * against its pdf (chi-square) or against a TypeScript reference.
+ * Used by test/browser only; it ships in the headless page, never the library.
+ */
+import kernelFrag from '../shaders/test/kernels.frag?raw';
+import { Program } from '../render/gl/program';
+import { FloatTarget } from '../render/gl/targets';
+import { layoutDefines } from '../render/layout';
+import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/passes/trace';
+import { createContext } from '../render/gl/context';
+
+export const KERNELS = ['sampleCone', 'sampleMaterial', 'pdfMaterial', 'sampleRng'] as const;
+export type KernelName = (typeof KERNELS)[number];
+
+export interface KernelRequest {
+  kernel: KernelName;
+  width: number;
+  height: number;
+  /** Kernel parameters: cone: [oneMinusCosMax]; material: [roughness]. */
+  params: number[];
+  /** Outgoing direction (local frame) for the material kernels. */
+  wo?: [number, number, number];
+  seed?: number;
+}
+
+let context: { gl: WebGL2RenderingContext; program: Program } | null = null;
+
+function kernelContext() {
+  if (!context) {
+    const gl = createContext(new OffscreenCanvas(1, 1), false);
+    const defines = { ...layoutDefines(), ...Object.fromEntries(KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i])) };
+    const program = new Program(gl, VERTEX_CHUNKS, [...SCENE_CHUNKS, { name: 'test/kernels.frag', source: kernelFrag }], defines);
+    gl.bindVertexArray(gl.createVertexArray());
+    context = { gl, program };
+  }
+  return context;
+}
+
+/** Runs a kernel; returns RGBA float32, rows bottom to top (pixel index = y * width + x). */
+export function runKernel(request: KernelRequest): Float32Array {
+  const { gl, program } = kernelContext();
+  const target = new FloatTarget(gl, request.width, request.height);
+  const params = [0, 0, 0, 0].map((v, i) => request.params[i] ?? v);
+  program.use().setUniforms(
+    {
+      uKernel: KERNELS.indexOf(request.kernel),
+      uParams: params,
+      uWo: request.wo ?? [0, 0, 1],
+      uGrid: [request.width, request.height],
+      uSeed: request.seed ?? 1,
+    },
+    { uKernel: 'int', uParams: 'vec4', uWo: 'vec3', uGrid: 'vec2', uSeed: 'uint' },
+  );
+  gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
+  gl.viewport(0, 0, request.width, request.height);
+  gl.drawArrays(gl.TRIANGLES, 0, 3);
+  const data = target.read();
+  target.dispose();
+  return data;
+}

@@ -1,0 +1,98 @@
+/**
+ * The page that the command-line renderer, the benchmark and the browser
+ * tests drive through Playwright: the same PathTracer as the interactive
+ * page, exposed as `window.pathtrace` with transfer-friendly results.
+ */
+import { PathTracer } from '../render/PathTracer';
+import type { DisplayOptions } from '../render/passes/display';
+import type { Scene } from '../scene/types';
+import { runKernel, type KernelRequest } from './kernels';
+
+export interface LoadOptions {
+  width: number;
+  height: number;
+  seed: number;
+}
+
+export interface HeadlessApi {
+  /** Capabilities of this browser, checked by every browser test first. */
+  probe(): { webgl2: boolean; floatTargets: boolean; renderer: string };
+  load(scene: Scene, options: LoadOptions): { renderer: string };
+  /** Renders `samples` more spp in draws of `samplesPerDraw`, waits for the GPU. */
+  render(samples: number, samplesPerDraw: number): { sampleCount: number; milliseconds: number };
+  readLinear(): string;
+  readDisplayed(options: DisplayOptions): string;
+  loseContext(): void;
+  restoreContext(): void;
+  contextLost(): boolean;
+  runKernel(request: KernelRequest): string;
+}
+
+let tracer: PathTracer | null = null;
+let loseContextExtension: WEBGL_lose_context | null = null;
+
+function requireTracer(): PathTracer {
+  if (!tracer) throw new Error('no scene loaded');
+  return tracer;
+}
+
+function toBase64(bytes: Uint8Array): string {
+  let binary = '';
+  const chunk = 0x8000;
+  for (let i = 0; i < bytes.length; i += chunk) {
+    binary += String.fromCharCode(...bytes.subarray(i, i + chunk));
+  }
+  return btoa(binary);
+}
+
+const api: HeadlessApi = {
+  probe() {
+    const gl = new OffscreenCanvas(1, 1).getContext('webgl2');
+    const floatTargets = !!gl?.getExtension('EXT_color_buffer_float');
+    const debug = gl?.getExtension('WEBGL_debug_renderer_info');
+    const renderer = gl && debug ? String(gl.getParameter(debug.UNMASKED_RENDERER_WEBGL)) : '';
+    return { webgl2: !!gl, floatTargets, renderer };
+  },
+  load(scene, options) {
+    tracer?.dispose();
+    tracer = new PathTracer(undefined, scene, options);
+    loseContextExtension = tracer.gl.getExtension('WEBGL_lose_context');
+    return { renderer: tracer.renderer };
+  },
+  render(samples, samplesPerDraw) {
+    const t = requireTracer();
+    const start = performance.now();
+    t.render(samples, samplesPerDraw);
+    t.finish();
+    return { sampleCount: t.sampleCount, milliseconds: performance.now() - start };
+  },
+  readLinear() {
+    const data = requireTracer().readLinear();
+    return toBase64(new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
+  },
+  readDisplayed(options) {
+    return toBase64(requireTracer().readDisplayed(options));
+  },
+  loseContext() {
+    loseContextExtension?.loseContext();
+  },
+  restoreContext() {
+    loseContextExtension?.restoreContext();
+  },
+  contextLost() {
+    return requireTracer().contextLost;
+  },
+  runKernel(request) {
+    const data = runKernel(request);
+    return toBase64(new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
+  },
+};
+
+declare global {
+  interface Window {
+    pathtrace: HeadlessApi;
+  }
+}
+
+window.pathtrace = api;
+document.body.dataset.ready = 'true';

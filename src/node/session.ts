@@ -1,0 +1,159 @@
+/**
+ * Drives the headless renderer page in Debian's Chromium (SwiftShader WebGL2)
+ * through playwright-core. Shared by the CLI, the benchmark and the tests, so
+ * all of them render through exactly the page's code.
+ */
+import { existsSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { chromium, type Browser, type Page } from 'playwright-core';
+import type { DisplayOptions } from '../render/passes/display';
+import { TONEMAPS } from '../render/layout';
+import type { Scene } from '../scene/types';
+import type { HeadlessApi, LoadOptions } from '../headless/main';
+import type { KernelRequest } from '../headless/kernels';
+import { serveDirectory, type StaticServer } from './server';
+
+export { TONEMAPS };
+export type { LoadOptions };
+
+export const DEFAULT_CHROMIUM = '/usr/bin/chromium';
+
+/** Flags for headless Chromium with CPU WebGL2 (SwiftShader) on a machine without a GPU. */
+export const CHROMIUM_ARGS = [
+  '--headless=new',
+  '--no-sandbox',
+  '--use-angle=swiftshader',
+  '--enable-unsafe-swiftshader',
+  '--disable-background-networking',
+  '--disable-component-update',
+  '--disable-sync',
+  '--no-first-run',
+];
+
+export class ChromiumNotFoundError extends Error {
+  constructor(path: string) {
+    super(`Chromium not found at ${path}: install it with "apt-get install chromium" or set PATHTRACE_CHROMIUM to its path`);
+    this.name = 'ChromiumNotFoundError';
+  }
+}
+
+export class WebPageNotBuiltError extends Error {
+  constructor() {
+    super('the web page is not built (dist/web/headless.html is missing): run "npm run build"');
+    this.name = 'WebPageNotBuiltError';
+  }
+}
+
+export interface SessionOptions {
+  chromiumPath?: string;
+}
+
+export interface RenderSession {
+  /** Loads a parsed scene into a fresh PathTracer in the page. */
+  load(scene: Scene, options: LoadOptions): Promise<{ renderer: string }>;
+  /** Renders `samples` more samples per pixel (split into draws internally); resolves with the total. */
+  render(samples: number): Promise<number>;
+  /** Mean linear radiance, RGBA float32, rows top to bottom, width*height*4. */
+  readLinear(): Promise<Float32Array>;
+  /** The displayed image exactly as the page shows it: RGBA8 sRGB, rows top to bottom. */
+  readDisplayed(options: { exposure: number; tonemap: string }): Promise<Uint8Array>;
+  close(): Promise<void>;
+  /** The page, for tests that need more than the API above. */
+  readonly page: Page;
+  probe(): Promise<{ webgl2: boolean; floatTargets: boolean; renderer: string }>;
+  runKernel(request: KernelRequest): Promise<Float32Array>;
+}
+
+/** The built page directory: dist/web next to the bundled CLI, or from the sources. */
+export function webRoot(): string {
+  const candidates = ['../web/', '../../dist/web/'].map((p) => fileURLToPath(new URL(p, import.meta.url)));
+  const found = candidates.find((dir) => existsSync(`${dir}headless.html`));
+  if (!found) throw new WebPageNotBuiltError();
+  return found;
+}
+
+export function chromiumPath(options: SessionOptions = {}): string {
+  const path = options.chromiumPath ?? process.env.PATHTRACE_CHROMIUM ?? DEFAULT_CHROMIUM;
+  if (!existsSync(path)) throw new ChromiumNotFoundError(path);
+  return path;
+}
+
+export async function launchChromium(options: SessionOptions = {}): Promise<Browser> {
+  return chromium.launch({ executablePath: chromiumPath(options), headless: true, args: CHROMIUM_ARGS });
+}
+
+/** Largest number of samples per pixel in one draw: keeps each draw well under a second. */
+const SAMPLES_PER_DRAW_BUDGET = 2_000_000;
+
+export async function openRenderSession(options: SessionOptions = {}): Promise<RenderSession> {
+  const root = webRoot();
+  const executable = chromiumPath(options);
+  const server: StaticServer = await serveDirectory(root);
+  let browser: Browser | undefined;
+  try {
+    browser = await chromium.launch({ executablePath: executable, headless: true, args: CHROMIUM_ARGS });
+    const page = await browser.newPage();
+    const pageErrors: string[] = [];
+    page.on('pageerror', (error) => pageErrors.push(error.message));
+    await page.goto(`${server.url}headless.html`);
+    await page.waitForFunction(() => document.body.dataset.ready === 'true', undefined, { timeout: 30_000 });
+    return createSession(page, browser, server, pageErrors);
+  } catch (error) {
+    await browser?.close();
+    await server.close();
+    throw error;
+  }
+}
+
+function createSession(page: Page, browser: Browser, server: StaticServer, pageErrors: string[]): RenderSession {
+  let pixels = 1;
+  // Calls window.pathtrace[method](...args) in the page (by name: the page's
+  // Content-Security-Policy rightly forbids eval).
+  const call = async <M extends keyof HeadlessApi>(
+    method: M,
+    ...args: Parameters<HeadlessApi[M]>
+  ): Promise<ReturnType<HeadlessApi[M]>> => {
+    try {
+      return (await page.evaluate(
+        ([m, a]) => (window.pathtrace[m] as (...x: unknown[]) => unknown)(...a),
+        [method, args] as [M, unknown[]],
+      )) as ReturnType<HeadlessApi[M]>;
+    } catch (error) {
+      const detail = pageErrors.length ? ` (${pageErrors.join('; ')})` : '';
+      const message = (error as Error).message.replace(/^page\.evaluate: /, '');
+      const withoutStack = message.split('\n').filter((line) => !/^\s+at /.test(line)).join('\n');
+      throw new Error(`${withoutStack}${detail}`);
+    }
+  };
+  return {
+    page,
+    probe: () => call('probe'),
+    async load(scene, options) {
+      pixels = options.width * options.height;
+      return call('load', scene, options);
+    },
+    async render(samples) {
+      const perDraw = Math.max(1, Math.min(samples, Math.floor(SAMPLES_PER_DRAW_BUDGET / pixels)));
+      return (await call('render', samples, perDraw)).sampleCount;
+    },
+    async readLinear() {
+      return toFloat32(await call('readLinear'));
+    },
+    async readDisplayed(options) {
+      const toneMap = options.tonemap as DisplayOptions['toneMap'];
+      return new Uint8Array(Buffer.from(await call('readDisplayed', { exposure: options.exposure, toneMap }), 'base64'));
+    },
+    async runKernel(request) {
+      return toFloat32(await call('runKernel', request));
+    },
+    async close() {
+      await browser.close();
+      await server.close();
+    },
+  };
+}
+
+function toFloat32(base64: string): Float32Array {
+  const bytes = Buffer.from(base64, 'base64');
+  return new Float32Array(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength));
+}

@@ -1,0 +1,245 @@
+/**
+ * The public renderer: a progressive path tracer on a WebGL2 canvas.
+ *
+ *   const tracer = new PathTracer(canvas, parseScene(json));
+ *   function frame() { tracer.render(1); tracer.display(); requestAnimationFrame(frame); }
+ *
+ * Scene edits (`setScene`) re-upload data and restart accumulation; they never
+ * recompile shaders. A lost WebGL context is restored by itself: resources are
+ * rebuilt and accumulation starts again.
+ */
+import type { Scene } from '../scene/types';
+import { type AnyCanvas, createContext, rendererInfo, requireFloatTargets } from './gl/context';
+import { PingPong } from './gl/targets';
+import { DisplayPass, type DisplayOptions } from './passes/display';
+import { TracePass } from './passes/trace';
+
+export interface PathTracerOptions {
+  /** Render resolution; defaults to the scene's image size. */
+  width?: number;
+  height?: number;
+  /** Seed of the random streams: the same seed gives the same image. Default 0. */
+  seed?: number;
+  /** Keep the canvas contents after compositing (needed to screenshot it). Default false. */
+  preserveDrawingBuffer?: boolean;
+}
+
+interface Resources {
+  trace: TracePass;
+  display: DisplayPass;
+  sums: PingPong;
+}
+
+export class PathTracer {
+  readonly canvas: AnyCanvas;
+  readonly gl: WebGL2RenderingContext;
+  private scene: Scene;
+  private seed: number;
+  private size: { width: number; height: number };
+  private samples = 0;
+  private resources: Resources | null = null;
+  private readonly listeners = new Map<string, Set<() => void>>();
+
+  constructor(canvas: AnyCanvas | undefined, scene: Scene, options: PathTracerOptions = {}) {
+    this.size = { width: options.width ?? scene.image.width, height: options.height ?? scene.image.height };
+    this.canvas = canvas ?? new OffscreenCanvas(this.size.width, this.size.height);
+    this.scene = scene;
+    this.seed = options.seed ?? 0;
+    this.gl = createContext(this.canvas, options.preserveDrawingBuffer ?? false);
+    this.canvas.addEventListener('webglcontextlost', this.onContextLost as EventListener);
+    this.canvas.addEventListener('webglcontextrestored', this.onContextRestored as EventListener);
+    this.resizeCanvas();
+    this.resources = this.createResources();
+  }
+
+  /** Samples per pixel accumulated since the last reset. */
+  get sampleCount(): number {
+    return this.samples;
+  }
+
+  get width(): number {
+    return this.size.width;
+  }
+
+  get height(): number {
+    return this.size.height;
+  }
+
+  get contextLost(): boolean {
+    return this.resources === null;
+  }
+
+  /** "vendor / renderer" of the WebGL implementation. */
+  get renderer(): string {
+    return rendererInfo(this.gl);
+  }
+
+  get currentScene(): Scene {
+    return this.scene;
+  }
+
+  /** Replaces the scene (re-upload only) and restarts accumulation. */
+  setScene(scene: Scene): void {
+    this.scene = scene;
+    this.resources?.trace.setScene(scene, this.size.width, this.size.height);
+    this.reset();
+  }
+
+  /** Changes the render resolution (and the canvas's drawing buffer) and restarts. */
+  setSize(width: number, height: number): void {
+    if (width === this.size.width && height === this.size.height) return;
+    this.size = { width: Math.max(1, Math.floor(width)), height: Math.max(1, Math.floor(height)) };
+    this.resizeCanvas();
+    if (this.resources) {
+      this.resources.sums.dispose();
+      this.resources.sums = new PingPong(this.gl, this.size.width, this.size.height);
+      this.resources.trace.setScene(this.scene, this.size.width, this.size.height);
+    }
+    this.reset();
+  }
+
+  setSeed(seed: number): void {
+    this.seed = seed;
+    this.reset();
+  }
+
+  /** Discards the accumulated samples. */
+  reset(): void {
+    this.samples = 0;
+    this.resources?.sums.clear();
+  }
+
+  /**
+   * Adds `samples` samples per pixel, in draws of at most `samplesPerDraw`
+   * each (one long draw stalls the GPU and risks its watchdog). Returns the
+   * new sample count. Does nothing while the context is lost.
+   */
+  render(samples = 1, samplesPerDraw = samples): number {
+    const r = this.resources;
+    if (!r || this.gl.isContextLost()) return this.samples;
+    const perDraw = Math.max(1, Math.floor(samplesPerDraw));
+    for (let done = 0; done < samples; ) {
+      const n = Math.min(perDraw, samples - done);
+      r.trace.draw(r.sums, this.samples, n, this.seed);
+      this.samples += n;
+      done += n;
+    }
+    return this.samples;
+  }
+
+  /** Draws the current mean image to the canvas. */
+  display(options: DisplayOptions = {}): void {
+    const r = this.resources;
+    if (!r || this.gl.isContextLost()) return;
+    r.display.draw(r.sums.read, this.samples, options, null, this.gl.drawingBufferWidth, this.gl.drawingBufferHeight);
+  }
+
+  /**
+   * The mean linear radiance, RGBA float32, rows from top to bottom. Alpha is
+   * the fraction of samples rejected as non-finite (0 unless something is wrong).
+   */
+  readLinear(): Float32Array {
+    const r = this.requireResources();
+    const sums = r.sums.read.read();
+    const scale = this.samples > 0 ? 1 / this.samples : 0;
+    return flipRows(sums.map((v) => v * scale), this.size.width, this.size.height, 4);
+  }
+
+  /** The displayed image (exposure, tone map, sRGB) as RGBA8, rows from top to bottom. */
+  readDisplayed(options: DisplayOptions = {}): Uint8Array {
+    const r = this.requireResources();
+    const gl = this.gl;
+    const { width, height } = this.size;
+    const texture = gl.createTexture()!;
+    gl.bindTexture(gl.TEXTURE_2D, texture);
+    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA8, width, height);
+    const framebuffer = gl.createFramebuffer()!;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
+    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
+    r.display.draw(r.sums.read, this.samples, options, framebuffer, width, height);
+    const pixels = new Uint8Array(width * height * 4);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
+    gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.deleteFramebuffer(framebuffer);
+    gl.deleteTexture(texture);
+    return flipRows(pixels, width, height, 4);
+  }
+
+  /** Blocks until the GPU has finished every queued draw (for timing). */
+  finish(): void {
+    const pixel = new Float32Array(4);
+    const r = this.resources;
+    if (!r) return;
+    this.gl.bindFramebuffer(this.gl.FRAMEBUFFER, r.sums.read.framebuffer);
+    this.gl.readPixels(0, 0, 1, 1, this.gl.RGBA, this.gl.FLOAT, pixel);
+    this.gl.bindFramebuffer(this.gl.FRAMEBUFFER, null);
+  }
+
+  /** 'contextlost' and 'contextrestored' notifications. */
+  on(event: 'contextlost' | 'contextrestored', listener: () => void): () => void {
+    if (!this.listeners.has(event)) this.listeners.set(event, new Set());
+    this.listeners.get(event)!.add(listener);
+    return () => this.listeners.get(event)?.delete(listener);
+  }
+
+  dispose(): void {
+    this.canvas.removeEventListener('webglcontextlost', this.onContextLost as EventListener);
+    this.canvas.removeEventListener('webglcontextrestored', this.onContextRestored as EventListener);
+    this.disposeResources();
+  }
+
+  private createResources(): Resources {
+    const trace = new TracePass(this.gl);
+    const display = new DisplayPass(this.gl);
+    const sums = new PingPong(this.gl, this.size.width, this.size.height);
+    trace.setScene(this.scene, this.size.width, this.size.height);
+    // An empty vertex array: the full-screen triangle comes from gl_VertexID.
+    this.gl.bindVertexArray(this.gl.createVertexArray());
+    return { trace, display, sums };
+  }
+
+  private disposeResources(): void {
+    const r = this.resources;
+    this.resources = null;
+    if (!r) return;
+    r.trace.dispose();
+    r.display.dispose();
+    r.sums.dispose();
+  }
+
+  private requireResources(): Resources {
+    if (!this.resources) throw new Error('the WebGL context is lost; wait for it to be restored');
+    return this.resources;
+  }
+
+  private resizeCanvas(): void {
+    if (this.canvas.width !== this.size.width) this.canvas.width = this.size.width;
+    if (this.canvas.height !== this.size.height) this.canvas.height = this.size.height;
+  }
+
+  private emit(event: string): void {
+    this.listeners.get(event)?.forEach((listener) => listener());
+  }
+
+  private readonly onContextLost = (event: Event): void => {
+    event.preventDefault(); // allow the browser to restore it
+    this.resources = null;  // the handles died with the context
+    this.samples = 0;
+    this.emit('contextlost');
+  };
+
+  private readonly onContextRestored = (): void => {
+    requireFloatTargets(this.gl);
+    this.resources = this.createResources();
+    this.samples = 0;
+    this.emit('contextrestored');
+  };
+}
+
+function flipRows<T extends Float32Array | Uint8Array>(data: T, width: number, height: number, channels: number): T {
+  const out = new (data.constructor as { new (n: number): T })(data.length);
+  const row = width * channels;
+  for (let y = 0; y < height; y++) out.set(data.subarray((height - 1 - y) * row, (height - y) * row), y * row);
+  return out;
+}

@@ -1,0 +1,6 @@
+export { PathTracer, type PathTracerOptions } from './PathTracer';
+export type { DisplayOptions } from './passes/display';
+export { TONEMAPS, type ToneMap } from './layout';
+export { ShaderCompileError } from './gl/program';
+export { WebGLUnavailableError } from './gl/context';
+export { packScene } from './packScene';

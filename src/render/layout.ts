@@ -1,0 +1,51 @@
+/**
+ * The packed scene layout, defined once. `packScene` writes it and the
+ * shaders read it through the #defines that `layoutDefines` generates.
+ */
+import { MAX_LIGHTS, MAX_SPHERES } from '../scene/limits';
+
+/** vec4 slots of one sphere: [center.xyz, radius], [color.rgb, roughness]. */
+export const SPHERE_FIELDS = { GEOMETRY: 0, MATERIAL: 1 } as const;
+/** vec4 slots of one light: [position.xyz, radius], [radiance.rgb, 0]. */
+export const LIGHT_FIELDS = { GEOMETRY: 0, RADIANCE: 1 } as const;
+/** vec4 slots of the ground: [height, 0, 0, 0], [color.rgb, roughness]. */
+export const GROUND_FIELDS = { GEOMETRY: 0, MATERIAL: 1 } as const;
+
+export const SPHERE_VEC4S = Object.keys(SPHERE_FIELDS).length;
+export const LIGHT_VEC4S = Object.keys(LIGHT_FIELDS).length;
+export const GROUND_VEC4S = Object.keys(GROUND_FIELDS).length;
+
+/** vec4 offsets of the members of the std140 `SceneBlock` uniform block. */
+export const BLOCK = {
+  spheres: 0,
+  lights: MAX_SPHERES * SPHERE_VEC4S,
+  ground: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S,
+  environment: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S + GROUND_VEC4S,
+  counts: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S + GROUND_VEC4S + 1,
+  size: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S + GROUND_VEC4S + 2,
+} as const;
+
+/** Tone mapping operators of the display pass, by name. */
+export const TONEMAPS = ['none', 'aces', 'neutral', 'agx'] as const;
+export type ToneMap = (typeof TONEMAPS)[number];
+
+/** Samples whose radiance is not below this are treated as invalid. */
+export const MAX_RADIANCE = 1e20;
+
+export function layoutDefines(): Record<string, string | number> {
+  return {
+    MAX_SPHERES,
+    MAX_LIGHTS,
+    SPHERE_VEC4S,
+    LIGHT_VEC4S,
+    GROUND_VEC4S,
+    SPHERE_GEOMETRY: SPHERE_FIELDS.GEOMETRY,
+    SPHERE_MATERIAL: SPHERE_FIELDS.MATERIAL,
+    LIGHT_GEOMETRY: LIGHT_FIELDS.GEOMETRY,
+    LIGHT_RADIANCE: LIGHT_FIELDS.RADIANCE,
+    GROUND_GEOMETRY: GROUND_FIELDS.GEOMETRY,
+    GROUND_MATERIAL: GROUND_FIELDS.MATERIAL,
+    MAX_RADIANCE: MAX_RADIANCE.toExponential(),
+    ...Object.fromEntries(TONEMAPS.map((name, i) => [`TONEMAP_${name.toUpperCase()}`, i])),
+  };
+}

@@ -1,0 +1,63 @@
+/** The display pass: mean radiance -> exposure -> tone map -> sRGB. */
+import displayFrag from '../../shaders/display.frag?raw';
+import { Program } from '../gl/program';
+import type { FloatTarget } from '../gl/targets';
+import { layoutDefines, TONEMAPS, type ToneMap } from '../layout';
+import { VERTEX_CHUNKS } from './trace';
+
+export interface DisplayOptions {
+  /** Exposure in stops: displayed radiance = mean * 2^exposure. Default 0. */
+  exposure?: number;
+  /** Tone mapping operator. Default 'none' (clamp). */
+  toneMap?: ToneMap;
+}
+
+const UNIFORM_TYPES: Record<string, string> = {
+  uAccumulation: 'sampler2D',
+  uInverseSampleCount: 'float',
+  uExposureScale: 'float',
+  uToneMap: 'int',
+  uViewportSize: 'vec2',
+};
+
+export class DisplayPass {
+  private readonly program: Program;
+
+  constructor(private readonly gl: WebGL2RenderingContext) {
+    this.program = new Program(gl, VERTEX_CHUNKS, [{ name: 'display.frag', source: displayFrag }], layoutDefines());
+  }
+
+  /** Draws into `framebuffer` (null = the canvas) of the given size. */
+  draw(
+    sums: FloatTarget,
+    sampleCount: number,
+    options: DisplayOptions,
+    framebuffer: WebGLFramebuffer | null,
+    width: number,
+    height: number,
+  ): void {
+    const gl = this.gl;
+    const toneMap = TONEMAPS.indexOf(options.toneMap ?? 'none');
+    if (toneMap < 0) throw new Error(`unknown tone map "${options.toneMap}"; use one of ${TONEMAPS.join(', ')}`);
+    this.program.use().setUniforms(
+      {
+        uAccumulation: 0,
+        uInverseSampleCount: sampleCount > 0 ? 1 / sampleCount : 0,
+        uExposureScale: 2 ** (options.exposure ?? 0),
+        uToneMap: toneMap,
+        uViewportSize: [width, height],
+      },
+      UNIFORM_TYPES,
+    );
+    gl.activeTexture(gl.TEXTURE0);
+    gl.bindTexture(gl.TEXTURE_2D, sums.texture);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
+    gl.viewport(0, 0, width, height);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  }
+
+  dispose(): void {
+    this.program.dispose();
+  }
+}

@@ -1,0 +1,120 @@
+/** The path-tracing pass: adds samples to the running sums in a ping-pong pair. */
+import fullscreenVert from '../../shaders/fullscreen.vert?raw';
+import mathGlsl from '../../shaders/common/math.glsl?raw';
+import rngGlsl from '../../shaders/common/rng.glsl?raw';
+import samplingGlsl from '../../shaders/common/sampling.glsl?raw';
+import layoutGlsl from '../../shaders/scene/layout.glsl?raw';
+import intersectGlsl from '../../shaders/scene/intersect.glsl?raw';
+import ggxGlsl from '../../shaders/bsdf/ggx.glsl?raw';
+import materialGlsl from '../../shaders/bsdf/material.glsl?raw';
+import sphereLightGlsl from '../../shaders/lights/sphere_light.glsl?raw';
+import cameraGlsl from '../../shaders/camera.glsl?raw';
+import integratorGlsl from '../../shaders/integrator.glsl?raw';
+import traceFrag from '../../shaders/trace.frag?raw';
+import { cameraFrame, inverseViewProjection } from '../../scene/camera';
+import type { Scene } from '../../scene/types';
+import { Program } from '../gl/program';
+import type { ShaderChunk } from '../gl/shaderSource';
+import type { PingPong } from '../gl/targets';
+import { BLOCK, layoutDefines } from '../layout';
+import { packScene } from '../packScene';
+
+export const VERTEX_CHUNKS: ShaderChunk[] = [{ name: 'fullscreen.vert', source: fullscreenVert }];
+
+/** The chunks every kernel that touches the scene needs, in dependency order. */
+export const SCENE_CHUNKS: ShaderChunk[] = [
+  { name: 'common/math.glsl', source: mathGlsl },
+  { name: 'common/rng.glsl', source: rngGlsl },
+  { name: 'common/sampling.glsl', source: samplingGlsl },
+  { name: 'scene/layout.glsl', source: layoutGlsl },
+  { name: 'scene/intersect.glsl', source: intersectGlsl },
+  { name: 'bsdf/ggx.glsl', source: ggxGlsl },
+  { name: 'bsdf/material.glsl', source: materialGlsl },
+  { name: 'lights/sphere_light.glsl', source: sphereLightGlsl },
+];
+
+const TRACE_CHUNKS: ShaderChunk[] = [
+  ...SCENE_CHUNKS,
+  { name: 'camera.glsl', source: cameraGlsl },
+  { name: 'integrator.glsl', source: integratorGlsl },
+  { name: 'trace.frag', source: traceFrag },
+];
+
+const UNIFORM_TYPES: Record<string, string> = {
+  uInverseViewProjection: 'mat4',
+  uCameraPosition: 'vec3',
+  uCameraRight: 'vec3',
+  uCameraUp: 'vec3',
+  uCameraForward: 'vec3',
+  uAperture: 'float',
+  uFocusDistance: 'float',
+  uResolution: 'vec2',
+  uMaxBounces: 'int',
+  uAccumulation: 'sampler2D',
+  uFirstSample: 'uint',
+  uSamplesPerDraw: 'uint',
+  uSeed: 'uint',
+};
+
+const SCENE_BLOCK_BINDING = 0;
+
+export class TracePass {
+  private readonly program: Program;
+  private readonly sceneBuffer: WebGLBuffer;
+
+  constructor(private readonly gl: WebGL2RenderingContext) {
+    this.program = new Program(gl, VERTEX_CHUNKS, TRACE_CHUNKS, layoutDefines());
+    const blockIndex = gl.getUniformBlockIndex(this.program.handle, 'SceneBlock');
+    gl.uniformBlockBinding(this.program.handle, blockIndex, SCENE_BLOCK_BINDING);
+    this.sceneBuffer = gl.createBuffer()!;
+    gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
+    gl.bufferData(gl.UNIFORM_BUFFER, BLOCK.size * 16, gl.DYNAMIC_DRAW);
+    gl.bindBuffer(gl.UNIFORM_BUFFER, null);
+  }
+
+  /** Uploads the scene: geometry and materials to the uniform block, camera to uniforms. */
+  setScene(scene: Scene, width: number, height: number): void {
+    const gl = this.gl;
+    gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
+    gl.bufferSubData(gl.UNIFORM_BUFFER, 0, packScene(scene));
+    gl.bindBuffer(gl.UNIFORM_BUFFER, null);
+    const frame = cameraFrame(scene.camera);
+    this.program.use().setUniforms(
+      {
+        uInverseViewProjection: inverseViewProjection(scene.camera, width / height),
+        uCameraPosition: frame.position,
+        uCameraRight: frame.right,
+        uCameraUp: frame.up,
+        uCameraForward: frame.forward,
+        uAperture: scene.camera.aperture,
+        uFocusDistance: frame.focusDistance,
+        uResolution: [width, height],
+        uMaxBounces: scene.render.maxBounces,
+        uAccumulation: 0,
+      },
+      UNIFORM_TYPES,
+    );
+  }
+
+  /** One draw: adds `samples` samples per pixel, numbered from `firstSample`. */
+  draw(targets: PingPong, firstSample: number, samples: number, seed: number): void {
+    const gl = this.gl;
+    this.program.use().setUniforms(
+      { uFirstSample: firstSample, uSamplesPerDraw: samples, uSeed: seed >>> 0 },
+      UNIFORM_TYPES,
+    );
+    gl.bindBufferBase(gl.UNIFORM_BUFFER, SCENE_BLOCK_BINDING, this.sceneBuffer);
+    gl.activeTexture(gl.TEXTURE0);
+    gl.bindTexture(gl.TEXTURE_2D, targets.read.texture);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, targets.write.framebuffer);
+    gl.viewport(0, 0, targets.write.width, targets.write.height);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    targets.swap();
+  }
+
+  dispose(): void {
+    this.program.dispose();
+    this.gl.deleteBuffer(this.sceneBuffer);
+  }
+}

@@ -1,0 +1,40 @@
+// Trowbridge-Reitz (GGX) microfacet distribution in the local shading frame
+// (+z = normal), isotropic, with the separable Smith shadowing term.
+
+float ggxD(vec3 h, float alpha) {
+  float a2 = alpha * alpha;
+  float c2 = h.z * h.z;
+  float d = c2 * (a2 - 1.0) + 1.0;
+  return a2 / (PI * d * d);
+}
+
+// Smith G1 for direction v: 2 cos / (cos + sqrt(alpha^2 sin^2 + cos^2)).
+float ggxG1(vec3 v, float alpha) {
+  float a2 = alpha * alpha;
+  float c2 = v.z * v.z;
+  float s2 = max(0.0, v.x * v.x + v.y * v.y);
+  return 2.0 * v.z / (v.z + sqrt(a2 * s2 + c2));
+}
+
+// Sample a microfacet normal from the distribution of normals visible from
+// wo (Heitz 2018, "Sampling the GGX Distribution of Visible Normals").
+vec3 sampleGgxVisibleNormal(vec3 wo, float alpha, vec2 u) {
+  vec3 vh = normalize(vec3(alpha * wo.x, alpha * wo.y, wo.z));
+  float lenSq = vh.x * vh.x + vh.y * vh.y;
+  vec3 t1 = lenSq > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(lenSq) : vec3(1.0, 0.0, 0.0);
+  vec3 t2 = cross(vh, t1);
+  float r = sqrt(u.x);
+  float phi = 2.0 * PI * u.y;
+  float p1 = r * cos(phi);
+  float p2 = r * sin(phi);
+  float s = 0.5 * (1.0 + vh.z);
+  p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * p2;
+  vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
+  return normalize(vec3(alpha * nh.x, alpha * nh.y, max(1e-7, nh.z)));
+}
+
+// Density of wi = reflect(-wo, h) when h is sampled by its visible normals:
+// D_wo(h) / (4 wo.h) = G1(wo) D(h) / (4 cos wo).
+float ggxReflectionPdf(vec3 wo, vec3 h, float alpha) {
+  return ggxG1(wo, alpha) * ggxD(h, alpha) / (4.0 * wo.z);
+}

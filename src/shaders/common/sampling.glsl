@@ -1,0 +1,46 @@
+// Concentric square-to-disk map (Shirley & Chiu): uniform on the unit disk.
+// Returns the point and its radius (the radius exactly, not re-derived from
+// the point: approximate sin/cos would make |point| drift past 1).
+vec2 sampleUniformDisk(vec2 u, out float radius) {
+  vec2 o = 2.0 * u - 1.0;
+  radius = 0.0;
+  if (o.x == 0.0 && o.y == 0.0) return vec2(0.0);
+  float theta;
+  if (abs(o.x) > abs(o.y)) { radius = o.x; theta = (PI / 4.0) * (o.y / o.x); }
+  else { radius = o.y; theta = (PI / 2.0) - (PI / 4.0) * (o.x / o.y); }
+  return radius * vec2(cos(theta), sin(theta));
+}
+
+vec2 sampleUniformDisk(vec2 u) {
+  float radius;
+  return sampleUniformDisk(u, radius);
+}
+
+// Cosine-weighted hemisphere around +z; pdf = cos(theta) / pi. With u < 1,
+// |radius| <= 1 - 2^-23, so z > 4e-4: never a grazing, zero-pdf direction.
+vec3 sampleCosineHemisphere(vec2 u) {
+  float radius;
+  vec2 d = sampleUniformDisk(u, radius);
+  return vec3(d, sqrt(max(0.0, 1.0 - radius * radius)));
+}
+
+// Uniform direction in the cone around +z with 1 - cos(theta_max) given.
+// Working with 1 - cos keeps precision for tiny cones (small, far lights).
+vec3 sampleUniformCone(vec2 u, float oneMinusCosMax) {
+  float oneMinusCos = u.x * oneMinusCosMax;
+  float cosTheta = 1.0 - oneMinusCos;
+  float sinTheta = sqrt(max(0.0, oneMinusCos * (2.0 - oneMinusCos)));
+  float phi = 2.0 * PI * u.y;
+  return vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
+}
+
+float uniformConePdf(float oneMinusCosMax) {
+  return 1.0 / (2.0 * PI * oneMinusCosMax);
+}
+
+// Power heuristic (beta = 2) in a form that cannot overflow.
+float powerHeuristic(float pdfA, float pdfB) {
+  if (pdfA <= 0.0) return 0.0;
+  float ratio = pdfB / pdfA;
+  return 1.0 / (1.0 + ratio * ratio);
+}

@@ -1,0 +1,31 @@
+// Scene data, packed by src/render/packScene.ts. The array sizes and the
+// field offsets are #defines generated from src/render/layout.ts.
+layout(std140) uniform SceneBlock {
+  vec4 uSpheres[MAX_SPHERES * SPHERE_VEC4S];
+  vec4 uLights[MAX_LIGHTS * LIGHT_VEC4S];
+  vec4 uGround[GROUND_VEC4S];
+  vec4 uEnvironment;   // rgb = radiance of escaping rays
+  vec4 uCounts;        // x = spheres, y = lights, z = ground enabled (0/1)
+};
+
+struct Material {
+  vec3 color;
+  float roughness;
+};
+
+int sphereCount() { return int(uCounts.x); }
+int lightCount() { return int(uCounts.y); }
+bool groundEnabled() { return uCounts.z > 0.5; }
+
+vec4 sphereGeometry(int i) { return uSpheres[i * SPHERE_VEC4S + SPHERE_GEOMETRY]; }
+Material sphereMaterial(int i) {
+  vec4 m = uSpheres[i * SPHERE_VEC4S + SPHERE_MATERIAL];
+  return Material(m.rgb, m.a);
+}
+vec4 lightGeometry(int i) { return uLights[i * LIGHT_VEC4S + LIGHT_GEOMETRY]; }
+vec3 lightRadiance(int i) { return uLights[i * LIGHT_VEC4S + LIGHT_RADIANCE].rgb; }
+float groundHeight() { return uGround[GROUND_GEOMETRY].x; }
+Material groundMaterial() {
+  vec4 m = uGround[GROUND_MATERIAL];
+  return Material(m.rgb, m.a);
+}

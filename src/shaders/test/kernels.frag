@@ -1,0 +1,37 @@
+// One renderer function per pixel, for the sampler tests.
+uniform int uKernel;
+uniform vec4 uParams;
+uniform vec3 uWo;
+uniform vec2 uGrid;
+uniform uint uSeed;
+
+out vec4 outValue;
+
+// Pixel centre -> direction on the sphere, uniform in (cos theta, phi).
+vec3 gridDirection(vec2 pixel) {
+  vec2 u = (pixel + 0.5) / uGrid;
+  float cosTheta = 2.0 * u.y - 1.0;
+  float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
+  float phi = 2.0 * PI * u.x;
+  return vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  uint index = uint(pixel.y) * uint(uGrid.x) + uint(pixel.x);
+  rngBeginSample(uvec2(index, 0u), 0u, uSeed);
+  Material material = Material(vec3(1.0), uParams.x);
+  if (uKernel == KERNEL_SAMPLECONE) {
+    outValue = vec4(sampleUniformCone(rand4().xy, uParams.x), uniformConePdf(uParams.x));
+  } else if (uKernel == KERNEL_SAMPLEMATERIAL) {
+    BsdfSample s = sampleMaterial(material, uWo, rand4().xyz);
+    outValue = s.valid ? vec4(s.wi, s.isDelta ? -1.0 : s.pdf) : vec4(0.0);
+  } else if (uKernel == KERNEL_PDFMATERIAL) {
+    vec3 wi = gridDirection(vec2(pixel));
+    float pdf;
+    evalMaterial(material, uWo, wi, pdf);
+    outValue = vec4(wi, pdf);
+  } else {
+    outValue = rand4();
+  }
+}
