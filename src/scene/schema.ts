@@ -1,0 +1,418 @@
+/**
+ * Scene format version 1: validation and normalization of untrusted input.
+ * docs/scene-format.md documents every rule enforced here; keep them in step.
+ *
+ * `parseScene` is the only way JSON becomes a `Scene`. It reports every
+ * problem at once, each with the JSON path of the offending value
+ * (`spheres[2].material.roughness: must be <= 1`), and throws nothing but
+ * `SceneError`, whatever the input.
+ */
+import * as z from 'zod';
+import { hexToLinear, isHexColor } from './color';
+import { MAX_BOUNCES, MAX_IMAGE_SIZE, MAX_LIGHTS, MAX_SCENE_BYTES, MAX_SPHERES } from './limits';
+import type { Camera, Environment, Ground, Light, Material, Scene, Sphere, Vec3 } from './types';
+
+/** Largest magnitude of a coordinate, a radius, a ground height or an aperture. */
+export const MAX_COORDINATE = 1e6;
+/** Largest explicit `camera.focusDistance` (more than any distance inside the coordinate box). */
+export const MAX_FOCUS_DISTANCE = 1e7;
+/**
+ * Largest light or environment intensity and emitted color channel: their
+ * product stays far inside the range of the shader's 32-bit floats.
+ */
+export const MAX_INTENSITY = 1e12;
+/** Shortest allowed `camera.up`, and closest allowed `camera.target` to `camera.position`. */
+export const MIN_CAMERA_LENGTH = 1e-6;
+/** At most this many issues are reported; one more issue at the root counts the rest. */
+export const MAX_REPORTED_ISSUES = 100;
+
+/** One problem in a scene. `path` is like "spheres[2].material.roughness"; "" is the document root. */
+export interface SceneIssue {
+  path: string;
+  message: string;
+}
+
+/** The only error the parse functions throw. `message` lists the issues, one "path: message" per line. */
+export class SceneError extends Error {
+  readonly issues: SceneIssue[];
+
+  constructor(issues: SceneIssue[]) {
+    super(issues.map(formatIssue).join('\n'));
+    this.name = 'SceneError';
+    this.issues = issues;
+  }
+}
+
+/** "path: message", with "scene" standing for the root. */
+export function formatIssue(issue: SceneIssue): string {
+  return `${issue.path === '' ? 'scene' : issue.path}: ${issue.message}`;
+}
+
+export type SafeParseResult = { ok: true; scene: Scene } | { ok: false; issues: SceneIssue[] };
+
+// ---------------------------------------------------------------- the schema
+
+/** The error of a schema's own type or shape check; a missing value stays "required". */
+const shapeError = (message: string) => (issue: { input?: unknown }) =>
+  issue.input === undefined ? undefined : message;
+
+const coordinate = () => z.number().min(-MAX_COORDINATE).max(MAX_COORDINATE);
+const length = () => z.number().gt(0).max(MAX_COORDINATE);
+const unit = () => z.number().min(0).max(1);
+const intensity = () => z.number().min(0).max(MAX_INTENSITY);
+const integer = (min: number, max: number) => z.number().min(min).max(max).int();
+
+const point = () =>
+  z.tuple([coordinate(), coordinate(), coordinate()], { error: shapeError('must be [x, y, z]') });
+
+/** [r, g, b] in linear RGB, or "#rrggbb" in sRGB (converted to linear before the channel checks). */
+const color = (channel: () => z.ZodNumber) =>
+  z.preprocess(
+    (value) => (isHexColor(value) ? hexToLinear(value) : value),
+    z.tuple([channel(), channel(), channel()], { error: shapeError('must be "#rrggbb" or [r, g, b]') }),
+  );
+
+const white = (): Vec3 => [1, 1, 1];
+const defaultMaterial = (): Material => ({ color: [0.8, 0.8, 0.8], roughness: 1 });
+
+/** Array of at most `max` items; the length is checked before any item is looked at. */
+const list = <T extends z.ZodType>(item: T, max: number, noun: string) =>
+  z
+    .array(z.unknown())
+    .max(max, `at most ${max} ${noun}`)
+    .pipe(z.array(item))
+    .default(() => []);
+
+const materialShape = {
+  color: color(unit).default(() => defaultMaterial().color),
+  roughness: unit().default(1),
+};
+const material = z.strictObject(materialShape).default(defaultMaterial);
+
+const cameraShape = {
+  position: point(),
+  target: point(),
+  up: point().default((): Vec3 => [0, 1, 0]),
+  fov: z.number().gt(0).lt(180).default(40),
+  aperture: z.number().min(0).max(MAX_COORDINATE).default(0),
+  focusDistance: z.number().gt(0).max(MAX_FOCUS_DISTANCE).optional(),
+};
+
+/**
+ * Runs a cross-field check when the object and the fields it reads parsed
+ * cleanly, even if other fields did not, so that all errors show at once.
+ */
+const whenValid =
+  (...keys: string[]) =>
+  (payload: { issues: readonly { code?: string; path?: PropertyKey[] }[] }) =>
+    payload.issues.every((issue) => {
+      const key = issue.path?.[0];
+      if (key === undefined) return issue.code === 'unrecognized_keys';
+      return !keys.includes(String(key));
+    });
+
+const camera = z
+  .strictObject(cameraShape)
+  .refine((c) => distance(c.position, c.target) >= MIN_CAMERA_LENGTH, {
+    path: ['target'],
+    message: 'must differ from camera.position',
+    when: whenValid('position', 'target'),
+  })
+  .refine((c) => Math.hypot(...c.up) >= MIN_CAMERA_LENGTH, {
+    path: ['up'],
+    message: 'must not be zero length',
+    when: whenValid('up'),
+  });
+
+const imageShape = { width: integer(1, MAX_IMAGE_SIZE), height: integer(1, MAX_IMAGE_SIZE) };
+const renderShape = { maxBounces: integer(0, MAX_BOUNCES).default(6) };
+const environmentShape = { color: color(intensity).default(white), intensity: intensity().default(1) };
+const groundShape = { height: coordinate().default(0), material };
+const lightShape = {
+  position: point(),
+  radius: length(),
+  color: color(intensity).default(white),
+  intensity: intensity().default(1),
+};
+const sphereShape = { center: point(), radius: length(), material };
+
+const sceneShape = {
+  version: z.literal(1, { error: shapeError('must be 1') }).default(1),
+  camera,
+  image: z.strictObject(imageShape).default(() => ({ width: 640, height: 480 })),
+  render: z.strictObject(renderShape).default(() => ({ maxBounces: 6 })),
+  environment: z.strictObject(environmentShape).nullable().default(null),
+  ground: z.strictObject(groundShape).nullable().default(null),
+  lights: list(z.strictObject(lightShape), MAX_LIGHTS, 'lights'),
+  spheres: list(z.strictObject(sphereShape), MAX_SPHERES, 'spheres'),
+};
+const sceneSchema = z.strictObject(sceneShape);
+
+/** Keys allowed in each object, by path pattern ("[]" for any index), to suggest fixes for typos. */
+const KNOWN_KEYS: Record<string, readonly string[]> = {
+  '': Object.keys(sceneShape),
+  camera: Object.keys(cameraShape),
+  image: Object.keys(imageShape),
+  render: Object.keys(renderShape),
+  environment: Object.keys(environmentShape),
+  ground: Object.keys(groundShape),
+  'ground.material': Object.keys(materialShape),
+  'lights[]': Object.keys(lightShape),
+  'spheres[]': Object.keys(sphereShape),
+  'spheres[].material': Object.keys(materialShape),
+};
+
+function distance(a: Vec3, b: Vec3): number {
+  return Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+}
+
+// ---------------------------------------------------------------- parsing
+
+/** Validates and normalizes a scene (a parsed JSON value). Throws `SceneError` only. */
+export function parseScene(input: unknown): Scene {
+  const result = safeParseScene(input);
+  if (!result.ok) throw new SceneError(result.issues);
+  return result.scene;
+}
+
+/** Like `parseScene`, but returns the issues instead of throwing. Never throws. */
+export function safeParseScene(input: unknown): SafeParseResult {
+  try {
+    const result = sceneSchema.safeParse(input, { error: messageFor });
+    if (result.success) return { ok: true, scene: copyScene(result.data) };
+    return { ok: false, issues: toSceneIssues(result.error.issues) };
+  } catch (error) {
+    // A last resort: inputs that are not plain JSON (throwing getters, proxies...).
+    return { ok: false, issues: [{ path: '', message: `could not be read (${describe(error)})` }] };
+  }
+}
+
+/**
+ * Parses scene JSON text: checks its size (at most MAX_SCENE_BYTES bytes of
+ * UTF-8), then the JSON syntax, then the scene. Throws `SceneError` only.
+ */
+export function parseSceneText(text: string): Scene {
+  const result = safeParseSceneText(text);
+  if (!result.ok) throw new SceneError(result.issues);
+  return result.scene;
+}
+
+/** Like `parseSceneText`, but returns the issues instead of throwing. Never throws. */
+export function safeParseSceneText(text: string): SafeParseResult {
+  if (typeof text !== 'string') return failure('must be JSON text (a string)');
+  const bytes = utf8Length(text, MAX_SCENE_BYTES + 1);
+  if (bytes > MAX_SCENE_BYTES) {
+    return failure(`must be at most ${MAX_SCENE_BYTES} bytes of UTF-8 text`);
+  }
+  let json: unknown;
+  try {
+    json = JSON.parse(text.charCodeAt(0) === 0xfeff ? text.slice(1) : text);
+  } catch (error) {
+    return failure(`invalid JSON: ${jsonErrorMessage(error, text)}`);
+  }
+  return safeParseScene(json);
+}
+
+function failure(message: string): SafeParseResult {
+  return { ok: false, issues: [{ path: '', message }] };
+}
+
+/** UTF-8 length of `text` as TextEncoder would encode it, counting no further than `stop`. */
+function utf8Length(text: string, stop: number): number {
+  if (text.length >= stop) return text.length; // every UTF-16 unit takes at least one byte
+  let bytes = 0;
+  for (let i = 0; i < text.length && bytes < stop; i++) {
+    const unit = text.charCodeAt(i);
+    if (unit < 0x80) bytes += 1;
+    else if (unit < 0x800) bytes += 2;
+    else if (unit >= 0xd800 && unit < 0xdc00 && isLowSurrogate(text.charCodeAt(i + 1))) {
+      bytes += 4;
+      i++;
+    } else bytes += 3; // the rest of the BMP, and lone surrogates (encoded as U+FFFD)
+  }
+  return bytes;
+}
+
+function isLowSurrogate(unit: number): boolean {
+  return unit >= 0xdc00 && unit < 0xe000;
+}
+
+/** The engine's message, plus line and column when it only gives a position. */
+function jsonErrorMessage(error: unknown, text: string): string {
+  const message = describe(error);
+  const position = /at position (\d+)/.exec(message);
+  if (!position || /line/i.test(message)) return message;
+  const before = text.slice(0, Number(position[1]));
+  const line = before.split('\n').length;
+  const column = before.length - before.lastIndexOf('\n');
+  return `${message} (line ${line}, column ${column})`;
+}
+
+function describe(error: unknown): string {
+  try {
+    const message = error instanceof Error ? error.message : String(error);
+    return message.length > 200 ? `${message.slice(0, 200)}...` : message;
+  } catch {
+    return 'unknown error';
+  }
+}
+
+// ---------------------------------------------------------------- messages
+
+type RawIssue = Parameters<z.core.$ZodErrorMap>[0];
+
+/** Short human messages for zod's issue codes (schema-specific messages take precedence). */
+function messageFor(issue: RawIssue): string {
+  switch (issue.code) {
+    case 'invalid_type':
+      if (issue.input === undefined) return 'required';
+      if (issue.expected === 'number') {
+        return typeof issue.input === 'number' ? 'must be a finite number' : 'must be a number';
+      }
+      if (issue.expected === 'int') return 'must be an integer';
+      if (issue.expected === 'array' || issue.expected === 'tuple') return 'must be an array';
+      return `must be ${/^[aeiou]/.test(issue.expected) ? 'an' : 'a'} ${issue.expected}`;
+    case 'too_small':
+      if (issue.origin === 'array') return `must have at least ${issue.minimum} items`;
+      return `must be ${issue.inclusive ? '>=' : '>'} ${formatNumber(Number(issue.minimum))}`;
+    case 'too_big':
+      if (issue.origin === 'int') return 'must be an integer';
+      if (issue.origin === 'array') return `must have at most ${issue.maximum} items`;
+      return `must be ${issue.inclusive ? '<=' : '<'} ${formatNumber(Number(issue.maximum))}`;
+    case 'invalid_value':
+      return `must be ${issue.values.map((value) => JSON.stringify(value)).join(' or ')}`;
+    case 'unrecognized_keys':
+      return 'unknown key';
+    default:
+      return 'is invalid';
+  }
+}
+
+/** 1000000 -> "1e6"; small numbers as written. */
+function formatNumber(value: number): string {
+  return Math.abs(value) >= 1e5 ? value.toExponential().replace('e+', 'e') : String(value);
+}
+
+/** zod issues -> one SceneIssue per bad value (first message per path), capped. */
+function toSceneIssues(issues: readonly z.core.$ZodIssue[]): SceneIssue[] {
+  const result: SceneIssue[] = [];
+  const seen = new Set<string>();
+  let dropped = 0;
+  const add = (path: string, message: string) => {
+    if (seen.has(path)) return;
+    seen.add(path);
+    if (result.length < MAX_REPORTED_ISSUES) result.push({ path, message });
+    else dropped++;
+  };
+  for (const issue of issues) {
+    if (issue.code === 'unrecognized_keys') {
+      for (const key of issue.keys) add(formatPath([...issue.path, key]), unknownKeyMessage(issue.path, key));
+    } else {
+      add(formatPath(issue.path), issue.message);
+    }
+  }
+  if (dropped > 0) result.push({ path: '', message: `${dropped} more problems not shown` });
+  return result;
+}
+
+/** "unknown key", with a suggestion when the key looks like a typo of an allowed one. */
+function unknownKeyMessage(objectPath: readonly PropertyKey[], key: string): string {
+  const pattern = formatPath(objectPath.map((part) => (typeof part === 'number' ? -1 : part)));
+  const known = KNOWN_KEYS[pattern] ?? [];
+  const wanted = simplify(key);
+  if (wanted.length > 32) return 'unknown key';
+  let best: string | undefined;
+  let bestDistance = wanted.length <= 3 ? 2 : 3; // accept 1 edit in short keys, 2 in longer ones
+  for (const candidate of known) {
+    const d = editDistance(wanted, simplify(candidate));
+    if (d < bestDistance) [best, bestDistance] = [candidate, d];
+  }
+  return best === undefined ? 'unknown key' : `unknown key (did you mean "${best}"?)`;
+}
+
+const simplify = (key: string) => key.toLowerCase().replace(/[\s_-]/g, '');
+
+/** Edit distance counting insertions, deletions, substitutions and swaps of neighbours (for short strings). */
+function editDistance(a: string, b: string): number {
+  const d: number[][] = Array.from({ length: a.length + 1 }, (_, i) => [i]);
+  for (let j = 1; j <= b.length; j++) d[0][j] = j;
+  for (let i = 1; i <= a.length; i++) {
+    for (let j = 1; j <= b.length; j++) {
+      const cost = a[i - 1] === b[j - 1] ? 0 : 1;
+      d[i][j] = Math.min(d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost);
+      if (i > 1 && j > 1 && a[i - 1] === b[j - 2] && a[i - 2] === b[j - 1]) {
+        d[i][j] = Math.min(d[i][j], d[i - 2][j - 2] + 1);
+      }
+    }
+  }
+  return d[a.length][b.length];
+}
+
+const IDENTIFIER = /^[A-Za-z_$][\w$]*$/;
+const MAX_KEY_CHARS = 40;
+
+/**
+ * ["spheres", 2, "material"] -> "spheres[2].material". Indices -1 print as
+ * "[]"; keys that are not identifiers print quoted (`["my key"]`), and keys
+ * longer than 40 characters are cut short with "...".
+ */
+export function formatPath(path: readonly PropertyKey[]): string {
+  let text = '';
+  for (const part of path) {
+    if (typeof part === 'number') text += part < 0 ? '[]' : `[${part}]`;
+    else {
+      let key = String(part);
+      if (key.length > MAX_KEY_CHARS) key = `${key.slice(0, MAX_KEY_CHARS)}...`;
+      if (IDENTIFIER.test(key)) text += text === '' ? key : `.${key}`;
+      else text += `[${JSON.stringify(key)}]`;
+    }
+  }
+  return text;
+}
+
+// ---------------------------------------------------------------- output
+
+type ParsedScene = z.output<typeof sceneSchema>;
+
+/**
+ * A fresh plain `Scene` with exactly the documented keys (-0 becomes 0). The
+ * typed copies also check at compile time that the schema's output fits `Scene`.
+ */
+function copyScene(parsed: ParsedScene): Scene {
+  return {
+    version: 1,
+    camera: copyCamera(parsed.camera),
+    image: { width: parsed.image.width, height: parsed.image.height },
+    render: { maxBounces: parsed.render.maxBounces },
+    environment: parsed.environment && copyEnvironment(parsed.environment),
+    ground: parsed.ground && copyGround(parsed.ground),
+    lights: parsed.lights.map(copyLight),
+    spheres: parsed.spheres.map(copySphere),
+  };
+}
+
+function copyCamera(c: Camera): Camera {
+  const camera: Camera = {
+    position: vec(c.position),
+    target: vec(c.target),
+    up: vec(c.up),
+    fov: c.fov,
+    aperture: num(c.aperture),
+  };
+  if (c.focusDistance !== undefined) camera.focusDistance = c.focusDistance;
+  return camera;
+}
+
+const copyEnvironment = (e: Environment): Environment => ({ color: vec(e.color), intensity: num(e.intensity) });
+const copyGround = (g: Ground): Ground => ({ height: num(g.height), material: copyMaterial(g.material) });
+const copyMaterial = (m: Material): Material => ({ color: vec(m.color), roughness: num(m.roughness) });
+const copyLight = (l: Light): Light => ({
+  position: vec(l.position),
+  radius: l.radius,
+  color: vec(l.color),
+  intensity: num(l.intensity),
+});
+const copySphere = (s: Sphere): Sphere => ({ center: vec(s.center), radius: s.radius, material: copyMaterial(s.material) });
+const vec = (v: Vec3): Vec3 => [num(v[0]), num(v[1]), num(v[2])];
+const num = (x: number) => (x === 0 ? 0 : x);
+
