@@ -1,0 +1,211 @@
+/**
+ * `pathtrace render`: parse the flags and the scene, check the output paths,
+ * then drive a headless Chromium session: load, render in chunks sized to
+ * take about half a second each (so the progress bar moves and no draw runs
+ * long), read back the displayed and linear images, and write PNG / PFM
+ * atomically.
+ */
+import { resolve } from 'node:path';
+import type { RenderSession, SessionOptions } from '../node/session';
+import type { Scene } from '../scene/types';
+import { parseRenderArgs, resolveSize, type Budget, type RawRenderOptions, type RenderArgs } from './args';
+import { CliError, EXIT_INTERRUPTED, failure, firstLine, oneLine, usageError } from './errors';
+import { checkWritable, defaultPngPath, writeOutputs } from './output';
+import { encodePfm } from './pfm';
+import { encodePng } from './png';
+import { createProgress, formatRate, type Progress, type ProgressStream } from './progress';
+import { loadSceneFile } from './validate';
+
+/** The part of a RenderSession the CLI uses. */
+export type CliSession = Pick<RenderSession, 'load' | 'render' | 'readLinear' | 'readDisplayed' | 'close'>;
+
+/** What render needs from src/node/session.ts; injected in tests. */
+export interface SessionModule {
+  openRenderSession(options?: SessionOptions): Promise<CliSession>;
+  TONEMAPS: readonly string[];
+}
+
+/** Session errors whose message is already a complete, actionable sentence. */
+const SELF_EXPLAINING_ERRORS = new Set(['ChromiumNotFoundError', 'WebPageNotBuiltError']);
+
+export interface RenderContext {
+  session: SessionModule;
+  stderr: ProgressStream;
+  /** Directory for the default output file; undefined = the current directory. */
+  cwd?: string;
+  /** Clock in seconds; injectable for tests. */
+  now?: () => number;
+}
+
+/** Each render() call aims at this long: short enough for a lively bar and no GPU watchdog trouble. */
+export const TARGET_CHUNK_SECONDS = 0.5;
+/** A chunk grows by at most this factor per call, so one bad rate estimate cannot make a huge draw. */
+const MAX_CHUNK_GROWTH = 4;
+
+export interface RenderOutcome {
+  spp: number;
+  seconds: number;
+  width: number;
+  height: number;
+  files: string[];
+}
+
+export async function renderCommand(sceneFile: string, raw: RawRenderOptions, ctx: RenderContext): Promise<RenderOutcome> {
+  const args = parseRenderArgs(raw, ctx.session.TONEMAPS);
+  const scene = await loadSceneFile(sceneFile);
+  const { width, height } = resolveSize(scene.image, args);
+  const pngPath = raw.output ?? defaultPngPath(sceneFile, ctx.cwd);
+  const hdrPath = raw.hdr;
+  await checkOutputs(pngPath, hdrPath);
+
+  const progress = createProgress(ctx.stderr, args.budget, width * height);
+  const now = ctx.now ?? (() => performance.now() / 1000);
+  try {
+    const result = await withSession(ctx.session, progress, (session) =>
+      renderImages(session, scene, args, { width, height }, progress, now, hdrPath !== undefined),
+    );
+    progress.stop();
+    const files = [{ path: pngPath, data: encodePng(width, height, result.displayed) }];
+    if (hdrPath !== undefined && result.linear) files.push({ path: hdrPath, data: encodePfm(width, height, result.linear) });
+    await writeOutputs(files);
+    const outcome = { spp: result.spp, seconds: result.seconds, width, height, files: files.map((f) => f.path) };
+    ctx.stderr.write(`${summaryLine(outcome)}\n`);
+    return outcome;
+  } finally {
+    progress.stop();
+  }
+}
+
+async function checkOutputs(pngPath: string, hdrPath: string | undefined): Promise<void> {
+  if (hdrPath !== undefined && resolve(hdrPath) === resolve(pngPath)) {
+    throw usageError(`--hdr: ${hdrPath} is also the PNG output (-o); give them different names`);
+  }
+  await checkWritable('-o', pngPath);
+  if (hdrPath !== undefined) await checkWritable('--hdr', hdrPath);
+}
+
+/** Opens a session, runs `work`, and always closes it; Ctrl-C closes Chromium too. */
+async function withSession<T>(module: SessionModule, progress: Progress, work: (s: CliSession) => Promise<T>): Promise<T> {
+  progress.status('starting Chromium...');
+  let session: CliSession;
+  try {
+    session = await module.openRenderSession();
+  } catch (error) {
+    // ChromiumNotFoundError's message already says how to install Chromium.
+    const name = (error as Error | undefined)?.name ?? '';
+    const message = SELF_EXPLAINING_ERRORS.has(name) ? oneLine((error as Error).message) : `cannot start Chromium: ${firstLine(error)}`;
+    throw failure(message, error);
+  }
+  const interrupted = interruption();
+  try {
+    const working = work(session);
+    working.catch(() => undefined);
+    return await Promise.race([working, interrupted.promise]);
+  } catch (error) {
+    if (error instanceof CliError) throw error;
+    throw failure(`render failed: ${firstLine(error)}`, error);
+  } finally {
+    interrupted.dispose();
+    await session.close().catch(() => undefined);
+  }
+}
+
+/** Rejects with exit code 130 on SIGINT / SIGTERM, so the session is closed before the process ends. */
+function interruption(): { promise: Promise<never>; dispose(): void } {
+  let onSignal: () => void = () => undefined;
+  const promise = new Promise<never>((_, reject) => {
+    onSignal = () => reject(new CliError(EXIT_INTERRUPTED, 'interrupted'));
+  });
+  promise.catch(() => undefined);
+  process.once('SIGINT', onSignal);
+  process.once('SIGTERM', onSignal);
+  return {
+    promise,
+    dispose() {
+      process.off('SIGINT', onSignal);
+      process.off('SIGTERM', onSignal);
+    },
+  };
+}
+
+interface RenderedImages {
+  displayed: Uint8Array;
+  linear?: Float32Array;
+  spp: number;
+  seconds: number;
+}
+
+async function renderImages(
+  session: CliSession,
+  scene: Scene,
+  args: RenderArgs,
+  size: { width: number; height: number },
+  progress: Progress,
+  now: () => number,
+  wantLinear: boolean,
+): Promise<RenderedImages> {
+  progress.status('loading scene and compiling the shader...');
+  await session.load(scene, { width: size.width, height: size.height, seed: args.seed });
+  progress.start();
+  const { spp, seconds } = await renderBudget(session, args.budget, progress, now);
+  progress.stop();
+  const pixels = size.width * size.height;
+  const displayed = await session.readDisplayed({ exposure: args.exposure, tonemap: args.tonemap });
+  checkLength('displayed image', displayed.length, pixels * 4);
+  let linear: Float32Array | undefined;
+  if (wantLinear) {
+    linear = await session.readLinear();
+    checkLength('linear image', linear.length, pixels * 4);
+  }
+  return { displayed, linear, spp, seconds };
+}
+
+function checkLength(what: string, got: number, expected: number): void {
+  if (got !== expected) throw failure(`render failed: the ${what} has ${got} values, expected ${expected}`);
+}
+
+/**
+ * Renders until the budget is met: exactly `spp` samples, or as many as fit
+ * in `seconds` (at least one). Chunk sizes follow the measured rate.
+ */
+export async function renderBudget(
+  session: Pick<CliSession, 'render'>,
+  budget: Budget,
+  progress: Pick<Progress, 'update'>,
+  now: () => number,
+): Promise<{ spp: number; seconds: number }> {
+  const start = now();
+  let done = 0;
+  let chunk = 1;
+  let rate = 0;
+  for (;;) {
+    const elapsed = now() - start;
+    let n: number;
+    if (budget.kind === 'spp') {
+      if (done >= budget.spp) break;
+      n = Math.min(chunk, budget.spp - done);
+    } else if (done === 0) {
+      n = 1;
+    } else {
+      const fits = Math.floor(rate * (budget.seconds - elapsed));
+      if (fits < 1) break;
+      n = Math.min(chunk, fits);
+    }
+    const before = now();
+    const total = await session.render(n);
+    const took = Math.max(now() - before, 1e-6);
+    done = Number.isFinite(total) && total >= done + n ? total : done + n;
+    rate = n / took;
+    chunk = Math.max(1, Math.min(Math.floor(rate * TARGET_CHUNK_SECONDS), chunk * MAX_CHUNK_GROWTH));
+    // The bar shows the mean rate so far: steadier than the last chunk's.
+    const sinceStart = now() - start;
+    progress.update({ spp: done, elapsed: sinceStart, sppPerSecond: sinceStart > 0 ? done / sinceStart : rate });
+  }
+  return { spp: done, seconds: now() - start };
+}
+
+export function summaryLine(outcome: RenderOutcome): string {
+  const { spp, seconds, width, height, files } = outcome;
+  const paths = seconds > 0 ? `${formatRate((spp * width * height) / seconds)} paths/s` : '- paths/s';
+  return `rendered ${width}x${height} at ${spp} spp in ${seconds.toFixed(2)} s (${paths}) -> ${files.join(', ')}`;
+}
