@@ -1,0 +1,98 @@
+/**
+ * Pieces shared by the benchmark entry points: machine description, timed
+ * rendering through the same headless session as the CLI, and result files.
+ */
+import { execFileSync } from 'node:child_process';
+import { mkdirSync, writeFileSync } from 'node:fs';
+import os from 'node:os';
+import type { RenderSession } from '../src/node/session';
+import type { Scene } from '../src/scene/types';
+
+export const RESULTS_DIR = new URL('./results/', import.meta.url);
+
+export interface MachineInfo {
+  cpu: string;
+  cores: number;
+  memoryGiB: number;
+  platform: string;
+  node: string;
+  browser: string;
+}
+
+export async function machineInfo(session: RenderSession): Promise<MachineInfo> {
+  const cpus = os.cpus();
+  return {
+    cpu: cpus[0]?.model ?? 'unknown',
+    cores: cpus.length,
+    memoryGiB: Math.round((os.totalmem() / 2 ** 30) * 10) / 10,
+    platform: `${os.platform()} ${os.release()} ${os.arch()}`,
+    node: process.version,
+    browser: session.page.context().browser()?.version() ?? 'unknown',
+  };
+}
+
+export function gitRevision(): string {
+  try {
+    const head = execFileSync('git', ['rev-parse', '--short', 'HEAD'], { encoding: 'utf8' }).trim();
+    const dirty = execFileSync('git', ['status', '--porcelain', '--', 'src'], { encoding: 'utf8' }).trim();
+    return dirty ? `${head}+dirty` : head;
+  } catch {
+    return 'unknown';
+  }
+}
+
+export interface Throughput {
+  width: number;
+  height: number;
+  maxBounces: number;
+  /** Seconds from load to the end of the first 1-spp draw: shader compile and link included. */
+  startupSeconds: number;
+  spp: number;
+  seconds: number;
+  /** Camera paths per second (spp * width * height / seconds), in millions. */
+  megaPathsPerSecond: number;
+}
+
+/** Renders for about `seconds` after a 1-spp warm-up and reports the path rate. */
+export async function measureThroughput(
+  session: RenderSession,
+  scene: Scene,
+  size: { width: number; height: number },
+  seconds: number,
+  seed = 1,
+): Promise<Throughput> {
+  const startLoad = performance.now();
+  await session.load(scene, { ...size, seed });
+  await session.render(1);
+  const startupSeconds = (performance.now() - startLoad) / 1000;
+  const pixels = size.width * size.height;
+  let chunk = 1;
+  let spp = 0;
+  const start = performance.now();
+  let elapsed = 0;
+  while (elapsed < seconds) {
+    await session.render(chunk);
+    spp += chunk;
+    elapsed = (performance.now() - start) / 1000;
+    const rate = spp / Math.max(elapsed, 1e-3);
+    // Chunks of ~0.25 s keep the loop overhead negligible.
+    chunk = Math.max(1, Math.min(Math.round(rate * 0.25), Math.ceil(rate * (seconds - elapsed))));
+  }
+  return {
+    width: size.width,
+    height: size.height,
+    maxBounces: scene.render.maxBounces,
+    startupSeconds,
+    spp,
+    seconds: elapsed,
+    megaPathsPerSecond: (spp * pixels) / elapsed / 1e6,
+  };
+}
+
+export function writeResult(prefix: string, data: unknown): string {
+  mkdirSync(RESULTS_DIR, { recursive: true });
+  const stamp = new Date().toISOString().replace(/[:.]/g, '-');
+  const url = new URL(`${prefix}-${stamp}.json`, RESULTS_DIR);
+  writeFileSync(url, `${JSON.stringify(data, null, 2)}\n`);
+  return url.pathname;
+}
