@@ -7,7 +7,7 @@
 import kernelFrag from '../shaders/test/kernels.frag?raw';
 import { Program } from '../render/gl/program';
 import { FloatTarget } from '../render/gl/targets';
-import { layoutDefines } from '../render/layout';
+import { BLOCK, layoutDefines } from '../render/layout';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/passes/trace';
 import { createContext } from '../render/gl/context';
 
@@ -33,6 +33,14 @@ function kernelContext() {
     const defines = { ...layoutDefines(), ...Object.fromEntries(KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i])) };
     const program = new Program(gl, VERTEX_CHUNKS, [...SCENE_CHUNKS, { name: 'test/kernels.frag', source: kernelFrag }], defines);
     gl.bindVertexArray(gl.createVertexArray());
+    // The scene chunks declare the SceneBlock uniform block; a draw with an
+    // active block and no buffer bound is an error, so bind an empty scene.
+    const sceneBuffer = gl.createBuffer();
+    gl.bindBuffer(gl.UNIFORM_BUFFER, sceneBuffer);
+    gl.bufferData(gl.UNIFORM_BUFFER, BLOCK.size * 16, gl.STATIC_DRAW);
+    const blockIndex = gl.getUniformBlockIndex(program.handle, 'SceneBlock');
+    if (blockIndex !== gl.INVALID_INDEX) gl.uniformBlockBinding(program.handle, blockIndex, 0);
+    gl.bindBufferBase(gl.UNIFORM_BUFFER, 0, sceneBuffer);
     context = { gl, program };
   }
   return context;
@@ -56,6 +64,8 @@ export function runKernel(request: KernelRequest): Float32Array {
   gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
   gl.viewport(0, 0, request.width, request.height);
   gl.drawArrays(gl.TRIANGLES, 0, 3);
+  const error = gl.getError();
+  if (error !== gl.NO_ERROR) throw new Error(`kernel ${request.kernel}: WebGL error 0x${error.toString(16)}`);
   const data = target.read();
   target.dispose();
   return data;
