@@ -29,8 +29,13 @@ export const BLOCK = {
 export const TONEMAPS = ['none', 'aces', 'neutral', 'agx'] as const;
 export type ToneMap = (typeof TONEMAPS)[number];
 
-/** Samples whose radiance is not below this are treated as invalid. */
-export const MAX_RADIANCE = 1e20;
+/**
+ * Samples whose radiance is not below this are treated as invalid (NaN and
+ * Inf fail the test too). The schema allows emission up to 1e12 * 1e12 =
+ * 1e24, so valid samples stay far below; float32 sums of 1e30-sized samples
+ * still hold 3e8 of them.
+ */
+export const MAX_RADIANCE = 1e30;
 
 export function layoutDefines(): Record<string, string | number> {
   return {
