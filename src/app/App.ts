@@ -1,0 +1,248 @@
+/**
+ * The page's state: the scene being edited, the selection, undo history, the
+ * render resolution and the renderer. Edits mutate `scene` and re-upload it
+ * (no shader recompile); each finished edit records the scene before it.
+ */
+import { PathTracer } from '../render/PathTracer';
+import { MAX_LIGHTS, MAX_SPHERES } from '../scene/limits';
+import { cameraRay } from '../scene/camera';
+import { pickObject, pickSurface, projectSphere, type ObjectHit, type ObjectKind } from '../scene/picking';
+import type { Camera, Scene, Vec3 } from '../scene/types';
+import { History } from './history';
+import { RenderLoop, type RenderStats, type ViewSettings } from './renderLoop';
+
+export interface Selection {
+  kind: ObjectKind;
+  index: number;
+}
+
+/** Most pixels rendered at full resolution (CSS size x devicePixelRatio is capped to this). */
+const MAX_RENDER_PIXELS = 1_200_000;
+/** How long after the last camera or object move the reduced resolution is kept. */
+const SETTLE_MS = 250;
+/** Linear scale of the render while something moves. */
+const MOVING_SCALE = 0.5;
+
+const clone = (scene: Scene): Scene => structuredClone(scene);
+
+export class App {
+  scene: Scene;
+  selection: Selection | null = null;
+  readonly history = new History<Scene>();
+  readonly view: ViewSettings = { exposure: 0, toneMap: 'aces', paused: false, targetSpp: 0 };
+  readonly tracer: PathTracer;
+  readonly loop: RenderLoop;
+  /** The camera to return to with "reset view": the loaded scene's. */
+  private homeCamera: Camera;
+  private editBefore: Scene | null = null;
+  private fullSize = { width: 1, height: 1 };
+  private movingUntil = 0;
+  private readonly listeners = new Set<() => void>();
+
+  constructor(
+    readonly canvas: HTMLCanvasElement,
+    scene: Scene,
+    private readonly maxWidth: number,
+    onStats: (stats: RenderStats) => void,
+  ) {
+    this.scene = clone(scene);
+    this.homeCamera = structuredClone(scene.camera);
+    this.tracer = new PathTracer(canvas, this.scene, { width: 64, height: 48 });
+    this.loop = new RenderLoop(this.tracer, this.view, () => this.applyResolution(), onStats);
+  }
+
+  /** Called after every change of the scene or the selection (panel, overlay, buttons). */
+  onChange(listener: () => void): void {
+    this.listeners.add(listener);
+  }
+
+  changed(): void {
+    this.listeners.forEach((listener) => listener());
+  }
+
+  get aspect(): number {
+    return this.scene.image.width / this.scene.image.height;
+  }
+
+  // ------------------------------------------------------------ edits
+
+  /** Starts (or continues) an edit: remembers the scene as it was before it. */
+  beginEdit(): void {
+    this.editBefore ??= clone(this.scene);
+  }
+
+  /** Finishes the current edit; records it for undo when it changed anything. */
+  endEdit(): void {
+    const before = this.editBefore;
+    this.editBefore = null;
+    if (before && JSON.stringify(before) !== JSON.stringify(this.scene)) this.history.record(before);
+    this.changed();
+  }
+
+  /** A continuous edit step (drag, slider): applies it now, recorded at endEdit. */
+  live(mutate: (scene: Scene) => void, moving = false): void {
+    this.beginEdit();
+    mutate(this.scene);
+    if (moving) this.movingUntil = performance.now() + SETTLE_MS;
+    this.upload();
+  }
+
+  /** A discrete edit (button, key): applied and recorded at once. */
+  edit(mutate: (scene: Scene) => void): void {
+    this.live(mutate);
+    this.endEdit();
+  }
+
+  undo(): void {
+    this.endEdit();
+    const previous = this.history.undo(clone(this.scene));
+    if (previous) this.replaceScene(previous);
+  }
+
+  redo(): void {
+    this.endEdit();
+    const next = this.history.redo(clone(this.scene));
+    if (next) this.replaceScene(next);
+  }
+
+  /** Loads a new scene (file, example, link): an undoable edit that also resets the home view. */
+  load(scene: Scene): void {
+    this.endEdit();
+    this.history.record(clone(this.scene));
+    this.homeCamera = structuredClone(scene.camera);
+    this.replaceScene(clone(scene));
+    this.layout();
+  }
+
+  resetView(): void {
+    this.edit((s) => (s.camera = structuredClone(this.homeCamera)));
+  }
+
+  addSphere(): void {
+    if (this.scene.spheres.length >= MAX_SPHERES) return;
+    const { target } = this.scene.camera;
+    const floor = this.scene.ground ? this.scene.ground.height : target[1] - 0.5;
+    this.edit((s) =>
+      s.spheres.push({ center: [target[0], floor + 0.5, target[2]], radius: 0.5, material: { color: [0.8, 0.8, 0.8], roughness: 0.5 } }),
+    );
+    this.select({ kind: 'sphere', index: this.scene.spheres.length - 1 });
+  }
+
+  addLight(): void {
+    if (this.scene.lights.length >= MAX_LIGHTS) return;
+    const { target } = this.scene.camera;
+    this.edit((s) => s.lights.push({ position: [target[0] + 1, target[1] + 3, target[2] + 1], radius: 0.3, color: [1, 1, 1], intensity: 40 }));
+    this.select({ kind: 'light', index: this.scene.lights.length - 1 });
+  }
+
+  deleteSelection(): void {
+    const selection = this.selection;
+    if (!selection) return;
+    this.selection = null;
+    this.edit((s) => (selection.kind === 'sphere' ? s.spheres : s.lights).splice(selection.index, 1));
+  }
+
+  select(selection: Selection | null): void {
+    this.selection = selection;
+    this.changed();
+  }
+
+  /** The selected object's centre (a sphere's center or a light's position), live. */
+  selectedCenter(): Vec3 | null {
+    const s = this.selection;
+    if (!s) return null;
+    return s.kind === 'sphere' ? this.scene.spheres[s.index]?.center ?? null : this.scene.lights[s.index]?.position ?? null;
+  }
+
+  selectedRadius(): number {
+    const s = this.selection;
+    if (!s) return 0;
+    return (s.kind === 'sphere' ? this.scene.spheres[s.index]?.radius : this.scene.lights[s.index]?.radius) ?? 0;
+  }
+
+  // ------------------------------------------------------------ picking
+
+  /** Image coordinates (u right, v down) of a client point over the canvas. */
+  imagePoint(clientX: number, clientY: number): { u: number; v: number } {
+    const rect = this.canvas.getBoundingClientRect();
+    return { u: (clientX - rect.left) / rect.width, v: (clientY - rect.top) / rect.height };
+  }
+
+  rayAt(clientX: number, clientY: number) {
+    const { u, v } = this.imagePoint(clientX, clientY);
+    return cameraRay(this.scene.camera, this.aspect, u, v);
+  }
+
+  pick(clientX: number, clientY: number): ObjectHit | null {
+    return pickObject(this.scene, this.rayAt(clientX, clientY));
+  }
+
+  /** Focuses the thin lens on the surface under a client point. */
+  focusAt(clientX: number, clientY: number): void {
+    const ray = this.rayAt(clientX, clientY);
+    const hit = pickSurface(this.scene, ray);
+    if (!hit) return;
+    const { position, target } = this.scene.camera;
+    const forward = [0, 1, 2].map((i) => target[i] - position[i]);
+    const norm = Math.hypot(forward[0], forward[1], forward[2]);
+    // The plane in focus is perpendicular to the view: distance along the view axis.
+    const depth = (hit.t * (ray.direction[0] * forward[0] + ray.direction[1] * forward[1] + ray.direction[2] * forward[2])) / norm;
+    if (depth > 0) this.edit((s) => (s.camera.focusDistance = Math.min(depth, 1e7)));
+  }
+
+  /** The selection outline in CSS pixels over the canvas, or null. */
+  selectionOutline(): { x: number; y: number; r: number } | null {
+    const center = this.selectedCenter();
+    if (!center) return null;
+    const outline = projectSphere(this.scene.camera, this.aspect, center, this.selectedRadius());
+    if (!outline) return null;
+    const width = this.canvas.clientWidth;
+    const height = this.canvas.clientHeight;
+    return { x: outline.u * width, y: outline.v * height, r: outline.radius * height };
+  }
+
+  // ------------------------------------------------------------ resolution
+
+  /** Fits the canvas box to its container at the scene's aspect ratio; sets the full render size. */
+  layout(): void {
+    const box = this.canvas.parentElement!;
+    const area = box.parentElement!;
+    const availableWidth = Math.max(1, area.clientWidth);
+    const availableHeight = Math.max(1, area.clientHeight);
+    const aspect = this.aspect;
+    const cssWidth = Math.min(availableWidth, availableHeight * aspect);
+    const cssHeight = cssWidth / aspect;
+    box.style.width = `${Math.floor(cssWidth)}px`;
+    box.style.height = `${Math.floor(cssHeight)}px`;
+    let width = cssWidth * (window.devicePixelRatio || 1);
+    width = Math.min(width, this.maxWidth, Math.sqrt(MAX_RENDER_PIXELS * aspect));
+    this.fullSize = { width: Math.max(8, Math.round(width)), height: Math.max(8, Math.round(width / aspect)) };
+    this.changed();
+  }
+
+  /** Before each frame: reduced resolution while something moves, full when it stops. */
+  private applyResolution(): void {
+    const moving = performance.now() < this.movingUntil;
+    const scale = moving ? MOVING_SCALE : 1;
+    const width = Math.max(8, Math.round(this.fullSize.width * scale));
+    const height = Math.max(8, Math.round(this.fullSize.height * scale));
+    if (width !== this.tracer.width || height !== this.tracer.height) this.tracer.setSize(width, height);
+  }
+
+  /** Marks the view as moving (wheel, drag) so the loop renders at reduced resolution. */
+  markMoving(): void {
+    this.movingUntil = performance.now() + SETTLE_MS;
+  }
+
+  private replaceScene(scene: Scene): void {
+    this.scene = scene;
+    const s = this.selection;
+    if (s && !(s.kind === 'sphere' ? scene.spheres[s.index] : scene.lights[s.index])) this.selection = null;
+    this.upload();
+    this.changed();
+  }
+
+  private upload(): void {
+    this.tracer.setScene(this.scene);
+  }
+}

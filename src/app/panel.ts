@@ -1,0 +1,170 @@
+/**
+ * The control panel (lil-gui). Every control reads and writes the scene
+ * through accessors, so `refresh()` after undo, load or a drag shows the
+ * current values. Scene colors are linear; the pickers show sRGB hex.
+ */
+import GUI, { type Controller } from 'lil-gui';
+import { TONEMAPS } from '../render/layout';
+import { hexToLinear, linearToHex } from '../scene/color';
+import { MAX_BOUNCES } from '../scene/limits';
+import type { Ground, Material } from '../scene/types';
+import type { App } from './App';
+
+const DEFAULT_GROUND: Ground = { height: 0, material: { color: [0.8, 0.8, 0.8], roughness: 1 } };
+
+export class Panel {
+  readonly gui: GUI;
+  private selectionFolder: GUI;
+  private selectionKey = '';
+  private lastGround: Ground = structuredClone(DEFAULT_GROUND);
+
+  constructor(
+    private readonly app: App,
+    container: HTMLElement,
+  ) {
+    this.gui = new GUI({ container, title: 'Controls', width: 280 });
+    this.selectionFolder = this.gui.addFolder('Selection');
+    this.buildSelection();
+    this.buildSky();
+    this.buildGround();
+    this.buildCamera();
+    this.buildRender();
+    app.onChange(() => this.refresh());
+  }
+
+  /** Shows the scene's current values (after undo, load, drags...). */
+  refresh(): void {
+    const s = this.app.selection;
+    const key = s ? `${s.kind}:${s.index}` : '';
+    if (key !== this.selectionKey) this.buildSelection();
+    for (const controller of this.gui.controllersRecursive()) controller.updateDisplay();
+  }
+
+  /** Wires a controller's changes into the edit history. */
+  private tracked<T extends Controller>(controller: T): T {
+    controller.onFinishChange(() => this.app.endEdit());
+    return controller;
+  }
+
+  private buildSelection(): void {
+    const app = this.app;
+    const folder = this.selectionFolder;
+    for (const c of [...folder.controllers]) c.destroy();
+    const s = app.selection;
+    this.selectionKey = s ? `${s.kind}:${s.index}` : '';
+    folder.title(s ? `Selected ${s.kind} ${s.index + 1}` : 'Selection (click an object)');
+    if (!s) return;
+    const sphere = () => app.scene.spheres[s.index];
+    const light = () => app.scene.lights[s.index];
+    const edit = (f: () => void) => app.live(f);
+    if (s.kind === 'sphere') {
+      const material = () => sphere().material;
+      this.materialControls(folder, material);
+      this.tracked(folder.add({
+        get radius() { return sphere().radius; },
+        set radius(v: number) { edit(() => (sphere().radius = v)); },
+      }, 'radius', 0.01, 10, 0.01));
+    } else {
+      this.tracked(folder.addColor({
+        get color() { return linearToHex(light().color); },
+        set color(v: string) { edit(() => (light().color = hexToLinear(v))); },
+      }, 'color'));
+      this.tracked(folder.add({
+        get intensity() { return light().intensity; },
+        set intensity(v: number) { edit(() => (light().intensity = v)); },
+      }, 'intensity', 0, 500, 0.5));
+      this.tracked(folder.add({
+        get radius() { return light().radius; },
+        set radius(v: number) { edit(() => (light().radius = v)); },
+      }, 'radius', 0.01, 5, 0.01));
+    }
+    folder.add({ remove: () => app.deleteSelection() }, 'remove').name('Delete');
+    folder.open();
+  }
+
+  private materialControls(folder: GUI, material: () => Material): void {
+    const app = this.app;
+    this.tracked(folder.addColor({
+      get color() { return linearToHex(material().color); },
+      set color(v: string) { app.live(() => (material().color = hexToLinear(v))); },
+    }, 'color'));
+    this.tracked(folder.add({
+      get roughness() { return material().roughness; },
+      set roughness(v: number) { app.live(() => (material().roughness = v)); },
+    }, 'roughness', 0, 1, 0.01));
+  }
+
+  private buildSky(): void {
+    const app = this.app;
+    const folder = this.gui.addFolder('Sky');
+    const env = () => (app.scene.environment ??= { color: [0, 0, 0], intensity: 0 });
+    this.tracked(folder.addColor({
+      get color() { return linearToHex(app.scene.environment?.color ?? [0, 0, 0]); },
+      set color(v: string) { app.live(() => (env().color = hexToLinear(v))); },
+    }, 'color'));
+    this.tracked(folder.add({
+      get intensity() { return app.scene.environment?.intensity ?? 0; },
+      set intensity(v: number) { app.live(() => (env().intensity = v)); },
+    }, 'intensity', 0, 5, 0.01));
+    folder.close();
+  }
+
+  private buildGround(): void {
+    const app = this.app;
+    const folder = this.gui.addFolder('Ground');
+    const ground = () => (app.scene.ground ??= structuredClone(this.lastGround));
+    const panel = this;
+    this.tracked(folder.add({
+      get enabled() { return app.scene.ground !== null; },
+      set enabled(on: boolean) {
+        app.live((s) => {
+          if (s.ground) panel.lastGround = structuredClone(s.ground);
+          s.ground = on ? structuredClone(panel.lastGround) : null;
+        });
+      },
+    }, 'enabled'));
+    this.tracked(folder.add({
+      get height() { return app.scene.ground?.height ?? panel.lastGround.height; },
+      set height(v: number) { app.live(() => (ground().height = v)); },
+    }, 'height', -5, 5, 0.01));
+    this.materialControls(folder, () => app.scene.ground?.material ?? panel.lastGround.material);
+    folder.close();
+  }
+
+  private buildCamera(): void {
+    const app = this.app;
+    const folder = this.gui.addFolder('Camera');
+    const camera = () => app.scene.camera;
+    const distance = () => Math.hypot(...([0, 1, 2].map((i) => camera().target[i] - camera().position[i]) as [number, number, number]));
+    this.tracked(folder.add({
+      get fov() { return camera().fov; },
+      set fov(v: number) { app.live(() => (camera().fov = v)); },
+    }, 'fov', 5, 120, 0.5).name('fov (deg)'));
+    this.tracked(folder.add({
+      get aperture() { return camera().aperture; },
+      set aperture(v: number) { app.live(() => (camera().aperture = v)); },
+    }, 'aperture', 0, 1, 0.005).name('aperture radius'));
+    this.tracked(folder.add({
+      get focus() { return camera().focusDistance ?? distance(); },
+      set focus(v: number) { app.live(() => (camera().focusDistance = v)); },
+    }, 'focus', 0.05, 50, 0.01).name('focus distance'));
+    folder.add({ reset: () => app.resetView() }, 'reset').name('Reset view');
+    folder.close();
+  }
+
+  private buildRender(): void {
+    const app = this.app;
+    const view = app.view;
+    const folder = this.gui.addFolder('Render');
+    this.tracked(folder.add({
+      get bounces() { return app.scene.render.maxBounces; },
+      set bounces(v: number) { app.live(() => (app.scene.render.maxBounces = v)); },
+    }, 'bounces', 0, MAX_BOUNCES, 1).name('max bounces'));
+    const redisplay = () => app.loop.invalidateDisplay();
+    folder.add(view, 'exposure', -6, 6, 0.1).name('exposure (stops)').onChange(redisplay);
+    folder.add(view, 'toneMap', [...TONEMAPS]).name('tone map').onChange(redisplay);
+    folder.add(view, 'targetSpp', 0, 100000, 1).name('stop at spp (0 = never)');
+    folder.add(view, 'paused').name('paused');
+    folder.open();
+  }
+}
