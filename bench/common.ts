@@ -3,12 +3,26 @@
  * rendering through the same headless session as the CLI, and result files.
  */
 import { execFileSync } from 'node:child_process';
-import { mkdirSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import type { RenderSession } from '../src/node/session';
 import type { Scene } from '../src/scene/types';
 
-export const RESULTS_DIR = new URL('./results/', import.meta.url);
+/**
+ * The project's root: the nearest directory above this module with a
+ * package.json (this file runs from bench/ through tsx and from dist/cli/
+ * when bundled).
+ */
+export function projectRoot(): URL {
+  let dir = new URL('./', import.meta.url);
+  for (let i = 0; i < 8; i++) {
+    if (existsSync(new URL('package.json', dir))) return dir;
+    dir = new URL('../', dir);
+  }
+  throw new Error('cannot find the project root (package.json) above the benchmark');
+}
+
+export const RESULTS_DIR = new URL('bench/results/', projectRoot());
 
 export interface MachineInfo {
   cpu: string;

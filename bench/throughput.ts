@@ -6,7 +6,7 @@
 import { readFileSync } from 'node:fs';
 import { openRenderSession } from '../src/node/session';
 import { parseSceneText } from '../src/scene/schema';
-import { gitRevision, machineInfo, measureThroughput, writeResult } from './common';
+import { gitRevision, machineInfo, measureThroughput, projectRoot, writeResult } from './common';
 
 function option(argv: string[], name: string, fallback: string): string {
   const i = argv.indexOf(`--${name}`);
@@ -18,7 +18,7 @@ async function main(argv: string[]): Promise<void> {
   const [width, height] = option(argv, 'size', '512x384').split('x').map(Number);
   const seconds = Number(option(argv, 'seconds', '10'));
   const repeat = Number(option(argv, 'repeat', '3'));
-  const scene = parseSceneText(readFileSync(new URL(`../test/fixtures/scenes/${name}.json`, import.meta.url), 'utf8'));
+  const scene = parseSceneText(readFileSync(new URL(`test/fixtures/scenes/${name}.json`, projectRoot()), 'utf8'));
   const session = await openRenderSession();
   try {
     const { renderer } = await session.load(scene, { width, height, seed: 1 });

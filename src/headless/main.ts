@@ -20,6 +20,8 @@ export interface HeadlessApi {
   load(scene: Scene, options: LoadOptions): { renderer: string };
   /** Renders `samples` more spp in draws of `samplesPerDraw`, waits for the GPU. */
   render(samples: number, samplesPerDraw: number): { sampleCount: number; milliseconds: number };
+  /** Discards the accumulated samples (keeps the compiled shaders: for timing). */
+  reset(): void;
   readLinear(): string;
   readDisplayed(options: DisplayOptions): string;
   loseContext(): void;
@@ -65,6 +67,9 @@ const api: HeadlessApi = {
     t.render(samples, samplesPerDraw);
     t.finish();
     return { sampleCount: t.sampleCount, milliseconds: performance.now() - start };
+  },
+  reset() {
+    requireTracer().reset();
   },
   readLinear() {
     const data = requireTracer().readLinear();

@@ -53,6 +53,8 @@ export interface RenderSession {
   load(scene: Scene, options: LoadOptions): Promise<{ renderer: string }>;
   /** Renders `samples` more samples per pixel (split into draws internally); resolves with the total. */
   render(samples: number): Promise<number>;
+  /** Discards the accumulated samples; the shaders stay compiled (the benchmark times from here). */
+  reset(): Promise<void>;
   /** Mean linear radiance, RGBA float32, rows top to bottom, width*height*4. */
   readLinear(): Promise<Float32Array>;
   /** The displayed image exactly as the page shows it: RGBA8 sRGB, rows top to bottom. */
@@ -135,6 +137,9 @@ function createSession(page: Page, browser: Browser, server: StaticServer, pageE
     async render(samples) {
       const perDraw = Math.max(1, Math.min(samples, Math.floor(SAMPLES_PER_DRAW_BUDGET / pixels)));
       return (await call('render', samples, perDraw)).sampleCount;
+    },
+    async reset() {
+      await call('reset');
     },
     async readLinear() {
       return toFloat32(await call('readLinear'));
