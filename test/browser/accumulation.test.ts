@@ -48,7 +48,7 @@ describe('long accumulation (100k spp)', () => {
   }
 
   it('agrees with short runs, keeps constant pixels exact and converges as 1/sqrt(N)', async () => {
-    const shorts = [];
+    const shorts: Float32Array[] = [];
     for (const seed of [11, 12, 13, 14]) shorts.push(await renderRun(SHORT, seed));
     const longA = await renderRun(LONG, 1);
     const longB = await renderRun(LONG, 2);
