@@ -22,13 +22,14 @@ export class Panel {
     private readonly app: App,
     container: HTMLElement,
   ) {
-    this.gui = new GUI({ container, title: 'Controls', width: 280 });
+    this.gui = new GUI({ container, title: 'Controls' });
     this.selectionFolder = this.gui.addFolder('Selection');
     this.buildSelection();
     this.buildSky();
     this.buildGround();
     this.buildCamera();
     this.buildRender();
+    for (const folder of [this.gui, ...this.gui.foldersRecursive()]) openWithoutAnimation(folder);
     app.onChange(() => this.refresh());
   }
 
@@ -167,4 +168,21 @@ export class Panel {
     folder.add(view, 'paused').name('paused');
     folder.open();
   }
+}
+
+/**
+ * lil-gui animates folders with two nested animation frames and a
+ * transitionend; when frames are slow (a long path-tracing frame) the
+ * transition can end before the height is set, leaving the folder stuck at a
+ * fixed height that clips later controls. Open and close without animation.
+ */
+function openWithoutAnimation(folder: GUI): void {
+  folder.$title.addEventListener(
+    'click',
+    (event) => {
+      event.stopImmediatePropagation();
+      folder.open(folder._closed);
+    },
+    { capture: true },
+  );
 }
