@@ -196,4 +196,34 @@ describe('the page', () => {
     expect(await page.evaluate(() => document.body.dataset.render)).toBe('rendering');
     await page.close();
   });
+
+  it('opens a scene dropped on the page', async () => {
+    const { page, errors } = await openPage(harness);
+    const text = fixture('small-light').toString('utf8');
+    const dataTransfer = await page.evaluateHandle((json) => {
+      const transfer = new DataTransfer();
+      transfer.items.add(new File([json], 'small-light.json', { type: 'application/json' }));
+      return transfer;
+    }, text);
+    await page.dispatchEvent('[data-testid="viewport"]', 'drop', { dataTransfer });
+    await expect.poll(() => savedScene(page), { timeout: 30_000 }).toEqual(serializeScene(parseSceneText(text)));
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('without WebGL2 shows a clear message instead of a blank canvas', async () => {
+    const page = await harness.browser.newPage({ viewport: { width: 800, height: 600 } });
+    await page.addInitScript(() => {
+      const original = HTMLCanvasElement.prototype.getContext;
+      HTMLCanvasElement.prototype.getContext = function (this: HTMLCanvasElement, type: string, ...rest: unknown[]) {
+        return type === 'webgl2' ? null : (original as (...a: unknown[]) => unknown).call(this, type, ...rest);
+      } as typeof original;
+    });
+    await page.goto(`${harness.server.url}?maxwidth=160`);
+    const alert = page.getByTestId('error');
+    await alert.waitFor({ state: 'visible' });
+    expect(await alert.textContent()).toContain('WebGL2 is not available');
+    expect(await page.locator('.fatal h2').textContent()).toContain('WebGL2');
+    await page.close();
+  });
 });
