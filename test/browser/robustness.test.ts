@@ -152,7 +152,7 @@ describe('nasty but valid scenes render without NaN, Inf, negative or rejected s
     }
   });
 
-  // The huge-emission case is separate (below): it documents a renderer bug.
+  // The huge-emission case is separate (below): a regression test of a fixed bug.
   it.each(NASTY.filter(([name]) => !name.startsWith('huge emission')))('%s', async (name, json) => {
     const scene: Scene = parseScene(json);
     await session().load(scene, { ...SIZE, seed: 1 });
@@ -184,15 +184,11 @@ describe('nasty but valid scenes render without NaN, Inf, negative or rejected s
     expect(Math.abs(means[1] / means[0] - 1), `means ${means}`).toBeLessThan(0.05);
   });
 
-  // KNOWN RENDERER BUG (documented in docs/limits-and-errors.md and the
-  // robustness report): the format allows emitted radiance color * intensity
-  // up to 1e12 * 1e12 = 1e24, but trace.frag rejects every sample whose
-  // radiance is >= MAX_RADIANCE = 1e20 (src/render/layout.ts). Every sample
-  // that sees the light directly is then discarded and counted in alpha.
-  // Fix: MAX_RADIANCE = 1e30 in src/render/layout.ts (float32 holds 3.4e38:
-  // 1e24 per sample still sums over 1e14 samples) -- or cap the product in
-  // the schema. Until then this test fails.
-  it('huge emission at the limit (1e12 * 1e12) is not rejected [KNOWN BUG: MAX_RADIANCE]', async () => {
+  // Regression (found by this file, fixed in 6f13452): the format allows
+  // emitted radiance color * intensity up to 1e12 * 1e12 = 1e24, but
+  // trace.frag rejected every sample >= MAX_RADIANCE, then 1e20. It is now
+  // 1e30 (src/render/layout.ts); float32 still sums 1e8 such samples.
+  it('huge emission at the limit (1e12 * 1e12) is not rejected (MAX_RADIANCE above the format's largest emission)', async () => {
     const [, json] = NASTY.find(([name]) => name.startsWith('huge emission'))!;
     await session().load(parseScene(json), { ...SIZE, seed: 1 });
     await session().render(SPP);
