@@ -138,6 +138,26 @@ describe('scene text from files and links', () => {
     expect(elapsed, 'milliseconds').toBeLessThan(200);
   });
 
+  it('the slowest 1 MB documents (as many unknown keys as fit) still parse in bounded time', () => {
+    // About 10 microseconds per unknown key (issue collection and "did you
+    // mean" suggestions): ~1 s for the ~110,000 keys that fit in 1 MB. Bounded,
+    // but worth trimming (stop collecting after MAX_REPORTED_ISSUES).
+    const head = '{"camera":{"position":[0,1,5],"target":[0,0,0]}';
+    const keys: string[] = [];
+    for (let i = 0, bytes = head.length + 1; ; i++) {
+      const key = `,"${i.toString(36)}":0`;
+      if (bytes + key.length > MAX_SCENE_BYTES) break;
+      keys.push(key);
+      bytes += key.length;
+    }
+    const text = `${head}${keys.join('')}}`;
+    expect(text.length).toBeLessThanOrEqual(MAX_SCENE_BYTES);
+    const start = performance.now();
+    const result = safeParseSceneText(text);
+    expect(result.ok ? 0 : result.issues.length).toBe(101); // 100 shown + "N more problems not shown"
+    expect(performance.now() - start, 'milliseconds').toBeLessThan(5000);
+  });
+
   it('is JSON only: no comments, no functions, no trailing garbage', () => {
     for (const text of [
       `${valid} // comment`,
