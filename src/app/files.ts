@@ -3,6 +3,7 @@
  * untrusted: it is size-limited, parsed with the one scene parser, and only
  * ever shown as text.
  */
+import { lzDecompressedLength } from './lzLength';
 import { compressToEncodedURIComponent, decompressFromEncodedURIComponent } from 'lz-string';
 import { MAX_SCENE_BYTES } from '../scene/limits';
 import { safeParseSceneText, type SafeParseResult } from '../scene/schema';
@@ -37,6 +38,9 @@ export function sceneFromHash(hash: string): SafeParseResult | null {
   const payload = hash.slice(SHARE_PREFIX.length);
   // Compression never makes a scene longer than its text, so a longer payload is not ours.
   if (payload.length > MAX_SCENE_BYTES) return failure('the link is too long to be a scene');
+  // Checked before decompressing: LZ output can be quadratically larger than its input.
+  // (UTF-16 units never outnumber UTF-8 bytes, so this limit is never too strict.)
+  if (lzDecompressedLength(payload, MAX_SCENE_BYTES) === Infinity) return failure('the link is too large to be a scene');
   let text: string | null = null;
   try {
     text = decompressFromEncodedURIComponent(payload);

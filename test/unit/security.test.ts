@@ -7,8 +7,9 @@ import { existsSync, readdirSync, readFileSync, statSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
-import { decompressFromEncodedURIComponent } from 'lz-string';
+import { compressToEncodedURIComponent, decompressFromEncodedURIComponent } from 'lz-string';
 import { SHARE_PREFIX, sceneFromHash, shareHash } from '../../src/app/files';
+import { lzDecompressedLength } from '../../src/app/lzLength';
 import { MAX_SCENE_BYTES } from '../../src/scene/limits';
 import { SceneError, parseScene, parseSceneText, safeParseSceneText } from '../../src/scene/schema';
 
@@ -227,6 +228,25 @@ function lzBomb(codes: number): string {
 }
 
 describe('share links', () => {
+  it('lzDecompressedLength agrees with lz-string on real, random and damaged links', () => {
+    let state = 7;
+    const random = () => (state = (Math.imul(state, 1103515245) + 12345) >>> 0) / 2 ** 32;
+    const texts = [JSON.stringify(parseScene({ camera: { position: [0, 1, 5], target: [0, 0, 0] } }))];
+    for (let i = 0; i < 300; i++) {
+      const length = Math.floor(random() * 400);
+      texts.push(Array.from({ length }, () => String.fromCharCode(32 + Math.floor(random() * (random() < 0.1 ? 2000 : 95)))).join(''));
+    }
+    for (const text of texts) {
+      const payload = compressToEncodedURIComponent(text);
+      expect(lzDecompressedLength(payload, Infinity)).toBe(text.length);
+      const damaged = payload.slice(0, Math.floor(random() * payload.length));
+      const actual = decompressFromEncodedURIComponent(damaged);
+      // A truncated stream decompresses to "" or null: any answer <= 0 says "nothing".
+      if (actual) expect(lzDecompressedLength(damaged, Infinity), damaged).toBe(actual.length);
+      else expect(lzDecompressedLength(damaged, Infinity), damaged).toBeLessThanOrEqual(0);
+    }
+  });
+
   it('round-trip a scene; a damaged or foreign link is an error, not an exception', () => {
     const scene = parseScene({ camera: { position: [0, 1, 5], target: [0, 0, 0] }, spheres: [{ center: [0, 0, 0], radius: 1 }] });
     const result = sceneFromHash(shareHash(scene));
@@ -242,13 +262,10 @@ describe('share links', () => {
     expect(decompressFromEncodedURIComponent(lzBomb(100))).toBe('a'.repeat((101 * 102) / 2));
   });
 
-  // KNOWN BUG in src/app/files.ts (sceneFromHash): the 1 MB limit is checked
-  // on the decompressed text, after lz-string has already built it. LZW output
-  // grows quadratically in the input, so a 41 KB link expands to 200 M
-  // characters (seconds of CPU, ~400 MB) and a few-hundred-KB link exhausts
-  // the tab's memory. Fix: bound the output while decompressing (see
-  // docs/limits-and-errors.md, "Share links"). Until then this test fails.
-  it('a decompression bomb is rejected fast, before it expands [KNOWN BUG: share-link size check]', () => {
+  // LZW output grows quadratically in the input, so a 41 KB link could expand
+  // to 200 M characters; sceneFromHash measures the output length from the
+  // bit stream (src/app/lzLength.ts) before decompressing anything.
+  it('a decompression bomb is rejected fast, before it expands', () => {
     const hash = SHARE_PREFIX + lzBomb(20_000);
     expect(hash.length).toBeLessThan(50_000);
     const start = performance.now();
