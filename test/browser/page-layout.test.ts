@@ -1,8 +1,9 @@
 /**
  * The page's layout at desktop (1280x800) and phone (390x844) sizes: the
  * toolbar, the canvas, the statistics and the panel do not overlap, text is
- * of a legible size, and the panel collapses. Writes the README's
- * screenshots to docs/screenshots/.
+ * of a legible size, and the panel collapses. Writes screenshots to
+ * test-output/screenshots/ to look at; with UPDATE_SCREENSHOTS=1 it writes
+ * the README's, in docs/screenshots/, instead.
  */
 import { mkdirSync, writeFileSync } from 'node:fs';
 import type { Page } from 'playwright-core';
@@ -12,7 +13,7 @@ import { projectPoint } from '../../src/scene/picking';
 import { defaultScene } from '../../src/scene/presets';
 import { canvasPoint, drag, openHarness, openPage, waitForSpp, type PageHarness } from '../support/page';
 
-const SHOTS = new URL('../../docs/screenshots/', import.meta.url);
+const SHOTS = new URL(process.env.UPDATE_SCREENSHOTS ? '../../docs/screenshots/' : '../../test-output/screenshots/', import.meta.url);
 
 type Box = { x: number; y: number; width: number; height: number };
 const overlaps = (a: Box, b: Box) =>
