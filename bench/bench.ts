@@ -1,7 +1,7 @@
 /**
  * `npm run bench`: the convergence benchmark (see bench/run.ts).
  *   npm run bench -- [--scenes seed,glossy] [--times 2,5,10] [--scale 1] [--target 0.02]
- *                    [--no-mitsuba] [--quick] [--no-save] [--json]
+ *                    [--samplers kronecker,independent] [--no-mitsuba] [--quick] [--no-save] [--json]
  * --quick: 0.5 s per scene, no Mitsuba, no result file: only checks that the benchmark runs (CI).
  * Results go to bench/results/bench-<date>.json.
  */
@@ -20,6 +20,7 @@ function parse(argv: string[]): { options: BenchOptions; save: boolean; json: bo
       case '--times': options.times = list(argv[++i]).map(Number); break;
       case '--scale': options.scale = Number(argv[++i]); break;
       case '--target': options.target = Number(argv[++i]); break;
+      case '--samplers': options.samplers = list(argv[++i]) as BenchOptions['samplers']; break;
       case '--seed': options.seed = Number(argv[++i]); break;
       case '--mitsuba': options.mitsuba = true; break;
       case '--no-mitsuba': options.mitsuba = false; break;
@@ -31,7 +32,7 @@ function parse(argv: string[]): { options: BenchOptions; save: boolean; json: bo
         save = false;
         break;
       default:
-        console.error(`unknown option ${arg}\nusage: bench [--scenes a,b] [--times 2,5,10] [--scale N] [--target 0.02] [--seed N] [--mitsuba|--no-mitsuba] [--quick] [--no-save] [--json]`);
+        console.error(`unknown option ${arg}\nusage: bench [--scenes a,b] [--times 2,5,10] [--scale N] [--target 0.02] [--seed N] [--samplers kronecker,independent] [--mitsuba|--no-mitsuba] [--quick] [--no-save] [--json]`);
         process.exit(2);
     }
   }

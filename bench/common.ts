@@ -3,7 +3,7 @@
  * rendering through the same headless session as the CLI, and result files.
  */
 import { execFileSync } from 'node:child_process';
-import { existsSync, mkdirSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import type { RenderSession } from '../src/node/session';
 import type { Scene } from '../src/scene/types';
@@ -65,6 +65,8 @@ export interface Throughput {
   seconds: number;
   /** Camera paths per second (spp * width * height / seconds), in millions. */
   megaPathsPerSecond: number;
+  /** Camera paths per CPU second of the GPU process (where SwiftShader runs), in millions: robust to other load. */
+  megaPathsPerCpuSecond?: number;
 }
 
 /** Renders for about `seconds` after a 1-spp warm-up and reports the path rate. */
@@ -82,6 +84,7 @@ export async function measureThroughput(
   const pixels = size.width * size.height;
   let chunk = 1;
   let spp = 0;
+  const cpuStart = gpuProcessCpuSeconds();
   const start = performance.now();
   let elapsed = 0;
   while (elapsed < seconds) {
@@ -100,6 +103,7 @@ export async function measureThroughput(
     spp,
     seconds: elapsed,
     megaPathsPerSecond: (spp * pixels) / elapsed / 1e6,
+    megaPathsPerCpuSecond: cpuStart === undefined ? undefined : (spp * pixels) / (gpuProcessCpuSeconds()! - cpuStart) / 1e6,
   };
 }
 
@@ -109,4 +113,47 @@ export function writeResult(prefix: string, data: unknown): string {
   const url = new URL(`${prefix}-${stamp}.json`, RESULTS_DIR);
   writeFileSync(url, `${JSON.stringify(data, null, 2)}\n`);
   return url.pathname;
+}
+
+/**
+ * CPU seconds (user + system) used so far by the GPU process of the Chromium
+ * that this Node process launched (Linux /proc only; undefined elsewhere).
+ * SwiftShader renders there, so CPU time per path is a measure of our shader's
+ * cost that other load on the machine barely disturbs, unlike wall time.
+ */
+export function gpuProcessCpuSeconds(): number | undefined {
+  try {
+    const pids = readdirSync('/proc').filter((d) => /^\d+$/.test(d));
+    const stat = (pid: string) => readFileSync(`/proc/${pid}/stat`, 'utf8');
+    const ppid = (s: string) => Number(s.slice(s.lastIndexOf(')') + 2).split(' ')[1]);
+    // Every descendant of this process (the GPU process hangs off a zygote).
+    const parent = new Map<string, number>();
+    for (const p of pids) {
+      try {
+        parent.set(p, ppid(stat(p)));
+      } catch {
+        // the process ended meanwhile
+      }
+    }
+    const mine = new Set<string>([String(process.pid)]);
+    for (let grew = true; grew; ) {
+      grew = false;
+      for (const [p, pp] of parent) if (!mine.has(p) && mine.has(String(pp))) (mine.add(p), (grew = true));
+    }
+    const ticks = 100; // USER_HZ on Linux
+    let total: number | undefined;
+    for (const pid of mine) {
+      try {
+        if (!readFileSync(`/proc/${pid}/cmdline`, 'utf8').includes('--type=gpu-process')) continue;
+        const s = stat(pid);
+        const fields = s.slice(s.lastIndexOf(')') + 2).split(' ');
+        total = (total ?? 0) + (Number(fields[11]) + Number(fields[12])) / ticks;
+      } catch {
+        // the process ended meanwhile
+      }
+    }
+    return total;
+  } catch {
+    return undefined;
+  }
 }

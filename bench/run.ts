@@ -15,7 +15,8 @@ import os from 'node:os';
 import path from 'node:path';
 import { decodePfm } from '../src/cli/pfm';
 import { relativeMse, type LinearImage } from '../src/node/imageMetrics';
-import { openRenderSession, type RenderSession } from '../src/node/session';
+import { openRenderSession, type LoadOptions, type RenderSession } from '../src/node/session';
+import type { SamplerKind } from '../src/render/layout';
 import { toMitsubaXml } from '../src/scene/mitsuba';
 import { parseSceneText } from '../src/scene/schema';
 import type { Scene } from '../src/scene/types';
@@ -35,6 +36,8 @@ export interface BenchOptions {
   /** Run Mitsuba 3 for comparison: 'auto' = when `import mitsuba` works (default). */
   mitsuba?: boolean | 'auto';
   seed?: number;
+  /** Samplers to run, each a row per scene, interleaved (default ['kronecker']; A/B: kronecker,independent). */
+  samplers?: SamplerKind[];
   log?: (line: string) => void;
 }
 
@@ -54,6 +57,7 @@ export interface RendererRun {
 
 export interface SceneRow {
   scene: string;
+  sampler: SamplerKind;
   width: number;
   height: number;
   maxBounces: number;
@@ -130,11 +134,12 @@ async function benchOurs(
   times: number[],
   target: number,
   seed: number,
+  sampler: SamplerKind,
 ): Promise<{ run: RendererRun; startupSeconds: number }> {
   // Load and a first draw: shader compile, link and SwiftShader's JIT (timed
   // as startup), then a fresh accumulation on the same context.
   const t0 = performance.now();
-  await session.load(scene, { ...size, seed });
+  await session.load(scene, { ...size, seed, sampler } as LoadOptions);
   await session.render(1);
   const startupSeconds = (performance.now() - t0) / 1000;
   await session.reset();
@@ -205,6 +210,7 @@ export async function runBench(options: BenchOptions = {}): Promise<BenchResult>
   const scale = options.scale ?? 1;
   const target = options.target ?? 0.02;
   const seed = options.seed ?? 1;
+  const samplers = options.samplers ?? ['kronecker'];
   const log = options.log ?? (() => {});
   const mitsubaVersion = options.mitsuba === false ? undefined : mitsubaAvailable();
   if (options.mitsuba === true && !mitsubaVersion) throw new Error('Mitsuba 3 requested but "python3 -c \'import mitsuba\'" fails');
@@ -220,17 +226,23 @@ export async function runBench(options: BenchOptions = {}): Promise<BenchResult>
       const reference = loadReference(name);
       const size = { width: reference.width * scale, height: reference.height * scale };
       const score = (image: LinearImage) => relativeMse(downsample(image, scale), reference);
-      log(`${name}: ours...`);
       renderer = (await session.probe()).renderer;
-      const { run, startupSeconds } = await benchOurs(session, scene, size, score, times, target, seed);
-      const row: SceneRow = { scene: name, ...size, maxBounces: scene.render.maxBounces, startupSeconds, ours: run };
+      const sceneRows: SceneRow[] = [];
+      for (const sampler of samplers) {
+        log(`${name}: ours (${sampler})...`);
+        const { run, startupSeconds } = await benchOurs(session, scene, size, score, times, target, seed, sampler);
+        sceneRows.push({ scene: name, sampler, ...size, maxBounces: scene.render.maxBounces, startupSeconds, ours: run });
+      }
       if (mitsubaVersion) {
         log(`${name}: Mitsuba...`);
-        row.mitsuba = benchMitsuba(scene, size, score, times, target, seed, dir);
-        row.ratio = run.checkpoints.map((c, i) => c.relMse / row.mitsuba!.checkpoints[i].relMse);
+        const mitsuba = benchMitsuba(scene, size, score, times, target, seed, dir);
+        for (const row of sceneRows) {
+          row.mitsuba = mitsuba;
+          row.ratio = row.ours.checkpoints.map((c, i) => c.relMse / mitsuba.checkpoints[i].relMse);
+        }
       }
-      rows.push(row);
-      log(formatRow(row));
+      for (const row of sceneRows) log(formatRow(row));
+      rows.push(...sceneRows);
     }
   } finally {
     await session.close();
@@ -243,7 +255,7 @@ export async function runBench(options: BenchOptions = {}): Promise<BenchResult>
     machine,
     renderer,
     mitsubaVersion,
-    options: { scenes, times, scale, target, seed, mitsuba: !!mitsubaVersion },
+    options: { scenes, times, scale, target, seed, samplers, mitsuba: !!mitsubaVersion },
     rows,
   };
 
@@ -253,7 +265,7 @@ const fmt = (v: number, digits = 3) => (Number.isFinite(v) ? v.toPrecision(digit
 
 export function formatRow(row: SceneRow): string {
   const ours = row.ours.checkpoints.map((c) => `${fmt(c.relMse)}@${c.spp}`).join(' ');
-  let line = `${row.scene}: ${row.width}x${row.height} b${row.maxBounces} ${fmt(row.ours.megaPathsPerSecond)} Mpath/s ${ours}`;
+  let line = `${row.scene} (${row.sampler}): ${row.width}x${row.height} b${row.maxBounces} ${fmt(row.ours.megaPathsPerSecond)} Mpath/s ${ours}`;
   if (row.ratio) line += ` ratio ${row.ratio.map((r) => fmt(r, 2)).join(' ')}`;
   return line;
 }
@@ -261,7 +273,7 @@ export function formatRow(row: SceneRow): string {
 /** The table, one row per scene. */
 export function formatTable(result: BenchResult): string {
   const times = result.options.times;
-  const header = ['scene', 'size', 'bounces', 'Mpath/s', ...times.map((t) => `spp@${t}s`), ...times.map((t) => `relMSE@${t}s`), `t(${result.options.target})`];
+  const header = ['scene', 'sampler', 'size', 'bounces', 'Mpath/s', ...times.map((t) => `spp@${t}s`), ...times.map((t) => `relMSE@${t}s`), `t(${result.options.target})`];
   if (result.mitsubaVersion) {
     header.push('Mi Mpath/s', ...times.map((t) => `Mi relMSE@${t}s`), `Mi t(${result.options.target})`, ...times.map((t) => `ours/Mi@${t}s`));
   }
@@ -269,6 +281,7 @@ export function formatTable(result: BenchResult): string {
   const lines = result.rows.map((row) => {
     const cells = [
       row.scene,
+      row.sampler,
       `${row.width}x${row.height}`,
       String(row.maxBounces),
       fmt(row.ours.megaPathsPerSecond),

@@ -25,11 +25,13 @@ async function main(argv: string[]): Promise<void> {
     const runs = [];
     for (let r = 0; r < repeat; r++) {
       const t = await measureThroughput(session, scene, { width, height }, seconds, r + 1);
-      console.log(`${name} ${width}x${height} ${t.maxBounces} bounces: ${t.megaPathsPerSecond.toFixed(3)} M paths/s (${t.spp} spp in ${t.seconds.toFixed(2)} s, startup ${t.startupSeconds.toFixed(2)} s)`);
+      console.log(`${name} ${width}x${height} ${t.maxBounces} bounces: ${t.megaPathsPerSecond.toFixed(3)} M paths/s, ${t.megaPathsPerCpuSecond?.toFixed(3)} M paths/CPU-s (${t.spp} spp in ${t.seconds.toFixed(2)} s, startup ${t.startupSeconds.toFixed(2)} s)`);
       runs.push(t);
     }
     const best = Math.max(...runs.map((t) => t.megaPathsPerSecond));
-    const file = writeResult(option(argv, 'prefix', 'throughput'), {
+    const cpu = runs.map((t) => t.megaPathsPerCpuSecond ?? NaN).sort((a, b) => a - b)[Math.floor(runs.length / 2)];
+    const prefix = option(argv, 'prefix', 'throughput');
+    const file = prefix === 'none' ? '(not saved)' : writeResult(prefix, {
       kind: 'throughput',
       date: new Date().toISOString(),
       revision: gitRevision(),
@@ -38,9 +40,10 @@ async function main(argv: string[]): Promise<void> {
       machine: await machineInfo(session),
       renderer,
       bestMegaPathsPerSecond: best,
+      medianMegaPathsPerCpuSecond: cpu,
       runs,
     });
-    console.log(`best ${best.toFixed(3)} M paths/s -> ${file}`);
+    console.log(`best ${best.toFixed(3)} M paths/s, median ${cpu.toFixed(3)} M paths/CPU-s -> ${file}`);
   } finally {
     await session.close();
   }

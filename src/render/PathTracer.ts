@@ -13,6 +13,7 @@ import { type AnyCanvas, createContext, rendererInfo, requireFloatTargets } from
 import { PingPong } from './gl/targets';
 import { DisplayPass, type DisplayOptions } from './passes/display';
 import { TracePass } from './passes/trace';
+import type { SamplerKind } from './layout';
 
 export interface PathTracerOptions {
   /** Render resolution; defaults to the scene's image size. */
@@ -20,6 +21,11 @@ export interface PathTracerOptions {
   height?: number;
   /** Seed of the random streams: the same seed gives the same image. Default 0. */
   seed?: number;
+  /**
+   * Random numbers of the first dimensions: 'kronecker' (default; a randomly shifted
+   * low-discrepancy sequence: unbiased, converges faster) or 'independent' (white noise everywhere).
+   */
+  sampler?: SamplerKind;
   /** Keep the canvas contents after compositing (needed to screenshot it). Default false. */
   preserveDrawingBuffer?: boolean;
 }
@@ -35,6 +41,7 @@ export class PathTracer {
   readonly gl: WebGL2RenderingContext;
   private scene: Scene;
   private seed: number;
+  private readonly sampler: SamplerKind;
   private size: { width: number; height: number };
   private samples = 0;
   private resources: Resources | null = null;
@@ -45,6 +52,7 @@ export class PathTracer {
     this.canvas = canvas ?? new OffscreenCanvas(this.size.width, this.size.height);
     this.scene = scene;
     this.seed = options.seed ?? 0;
+    this.sampler = options.sampler ?? 'kronecker';
     this.gl = createContext(this.canvas, options.preserveDrawingBuffer ?? false);
     this.canvas.addEventListener('webglcontextlost', this.onContextLost as EventListener);
     this.canvas.addEventListener('webglcontextrestored', this.onContextRestored as EventListener);
@@ -190,7 +198,7 @@ export class PathTracer {
   }
 
   private createResources(): Resources {
-    const trace = new TracePass(this.gl);
+    const trace = new TracePass(this.gl, this.sampler);
     const display = new DisplayPass(this.gl);
     const sums = new PingPong(this.gl, this.size.width, this.size.height);
     trace.setScene(this.scene, this.size.width, this.size.height);

@@ -37,6 +37,34 @@ export type ToneMap = (typeof TONEMAPS)[number];
  */
 export const MAX_RADIANCE = 1e30;
 
+/**
+ * Random-number dimensions (one rand4() each): the camera ray takes one, each
+ * bounce two (light sample; BSDF sample, whose .w is spare).
+ */
+export const RNG_CAMERA_DIMENSIONS = 1;
+export const RNG_BOUNCE_DIMENSIONS = 2;
+
+/**
+ * Generators of the R_d Kronecker sequence (M. Roberts, "The unreasonable
+ * effectiveness of quasirandom sequences", 2018) for `n` coordinates:
+ * alpha_j = frac(1 / phi^j), j = 1..n, phi the positive root of
+ * x^(n+1) = x + 1; as 32-bit fixed point. The low-discrepancy sampler uses
+ * six: camera jitter, first light sample, first BSDF sample (2D each).
+ */
+export function kroneckerGenerators(n: number): number[] {
+  let phi = 2;
+  for (let i = 0; i < 100; i++) phi = (1 + phi) ** (1 / (n + 1));
+  return Array.from({ length: n }, (_, j) => Math.floor(((1 / phi ** (j + 1)) % 1) * 2 ** 32) >>> 0);
+}
+
+function ldGeneratorDefines(): Record<string, string> {
+  const g = kroneckerGenerators(6);
+  const pair = (i: number) => `uvec2(${g[2 * i]}u, ${g[2 * i + 1]}u)`;
+  return { LD_GENERATOR_CAMERA: pair(0), LD_GENERATOR_LIGHT: pair(1), LD_GENERATOR_BSDF: pair(2) };
+}
+
+export type SamplerKind = 'kronecker' | 'independent';
+
 export function layoutDefines(): Record<string, string | number> {
   return {
     MAX_SPHERES,
@@ -51,6 +79,10 @@ export function layoutDefines(): Record<string, string | number> {
     GROUND_GEOMETRY: GROUND_FIELDS.GEOMETRY,
     GROUND_MATERIAL: GROUND_FIELDS.MATERIAL,
     MAX_RADIANCE: MAX_RADIANCE.toExponential(),
+    RNG_CAMERA_DIMENSIONS: `${RNG_CAMERA_DIMENSIONS}u`,
+    RNG_BOUNCE_DIMENSIONS: `${RNG_BOUNCE_DIMENSIONS}u`,
+    ...ldGeneratorDefines(),
+    LOW_DISCREPANCY: 1,
     ...Object.fromEntries(TONEMAPS.map((name, i) => [`TONEMAP_${name.toUpperCase()}`, i])),
   };
 }

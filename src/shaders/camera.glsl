@@ -12,6 +12,9 @@ uniform vec2 uResolution;      // render target size in pixels
 
 void generateCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) {
   vec4 u = rand4();
+#if LOW_DISCREPANCY
+  u.xy = ldCamera();
+#endif
   vec2 ndc = 2.0 * (pixel + u.xy) / uResolution - 1.0;
   vec4 p = uInverseViewProjection * vec4(ndc, -1.0, 1.0);
   direction = normalize(p.xyz / p.w);

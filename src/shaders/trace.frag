@@ -16,8 +16,9 @@ bool isValidRadiance(vec3 c) {
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 added = vec4(0.0);
+  rngBeginPixel(uvec2(pixel), uSeed);
   for (uint s = 0u; s < uSamplesPerDraw; s++) {
-    rngBeginSample(uvec2(pixel), uFirstSample + s, uSeed);
+    rngBeginSample(uFirstSample + s);
     vec3 origin, direction;
     generateCameraRay(vec2(pixel), origin, direction);
     vec3 radiance = traceRadiance(origin, direction);

@@ -16,7 +16,7 @@ import type { Scene } from '../../scene/types';
 import { Program } from '../gl/program';
 import type { ShaderChunk } from '../gl/shaderSource';
 import type { PingPong } from '../gl/targets';
-import { BLOCK, layoutDefines } from '../layout';
+import { BLOCK, layoutDefines, type SamplerKind } from '../layout';
 import { packScene } from '../packScene';
 
 export const VERTEX_CHUNKS: ShaderChunk[] = [{ name: 'fullscreen.vert', source: fullscreenVert }];
@@ -62,8 +62,11 @@ export class TracePass {
   private readonly program: Program;
   private readonly sceneBuffer: WebGLBuffer;
 
-  constructor(private readonly gl: WebGL2RenderingContext) {
-    this.program = new Program(gl, VERTEX_CHUNKS, TRACE_CHUNKS, layoutDefines());
+  constructor(private readonly gl: WebGL2RenderingContext, sampler: SamplerKind = 'kronecker') {
+    this.program = new Program(gl, VERTEX_CHUNKS, TRACE_CHUNKS, {
+      ...layoutDefines(),
+      LOW_DISCREPANCY: sampler === 'kronecker' ? 1 : 0,
+    });
     const blockIndex = gl.getUniformBlockIndex(this.program.handle, 'SceneBlock');
     gl.uniformBlockBinding(this.program.handle, blockIndex, SCENE_BLOCK_BINDING);
     this.sceneBuffer = gl.createBuffer()!;

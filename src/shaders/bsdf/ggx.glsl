@@ -17,18 +17,16 @@ float ggxG1(vec3 v, float alpha) {
 }
 
 // Sample a microfacet normal from the distribution of normals visible from
-// wo (Heitz 2018, "Sampling the GGX Distribution of Visible Normals").
-vec3 sampleGgxVisibleNormal(vec3 wo, float alpha, vec2 u) {
+// wo (Heitz 2018, "Sampling the GGX Distribution of Visible Normals"), given
+// a uniform point `disk` on the unit disk (shared with cosine sampling).
+vec3 sampleGgxVisibleNormal(vec3 wo, float alpha, vec2 disk) {
   vec3 vh = normalize(vec3(alpha * wo.x, alpha * wo.y, wo.z));
   float lenSq = vh.x * vh.x + vh.y * vh.y;
   vec3 t1 = lenSq > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(lenSq) : vec3(1.0, 0.0, 0.0);
   vec3 t2 = cross(vh, t1);
-  float r = sqrt(u.x);
-  float phi = 2.0 * PI * u.y;
-  float p1 = r * cos(phi);
-  float p2 = r * sin(phi);
+  float p1 = disk.x;
   float s = 0.5 * (1.0 + vh.z);
-  p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * p2;
+  float p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * disk.y;
   vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
   return normalize(vec3(alpha * nh.x, alpha * nh.y, max(1e-7, nh.z)));
 }

@@ -55,12 +55,13 @@ BsdfSample sampleMaterial(Material m, vec3 wo, vec3 u) {
     s.valid = true;
     return s;
   }
-  if (chooseSpecular) {
-    vec3 h = sampleGgxVisibleNormal(wo, specularAlpha(m), u.xy);
-    s.wi = reflect(-wo, h);
-  } else {
-    s.wi = sampleCosineHemisphere(u.xy);
-  }
+  // One polar disk point serves both lobes (one sin/cos pair per bounce):
+  // projected up it is cosine-distributed, warped it is a visible normal.
+  float r2 = u.x;
+  float phi = 2.0 * PI * u.y;
+  vec2 disk = sqrt(r2) * vec2(cos(phi), sin(phi));
+  vec3 h = sampleGgxVisibleNormal(wo, specularAlpha(m), disk);
+  s.wi = chooseSpecular ? reflect(-wo, h) : vec3(disk, sqrt(1.0 - r2));
   vec3 f = evalMaterial(m, wo, s.wi, s.pdf);
   if (s.pdf <= 0.0) return s;
   s.weight = f / s.pdf;

@@ -29,10 +29,10 @@ float lightPdf(vec3 x, int light) {
 
 // Next-event estimation at a surface vertex: f * Le * cos / pdf, weighted by
 // the power heuristic against BSDF sampling.
-vec3 sampleDirectLight(Hit hit, mat3 frame, vec3 wo, Material m) {
+// u: .xy direction in the cone, .z choice of the light.
+vec3 sampleDirectLight(Hit hit, mat3 frame, vec3 wo, Material m, vec3 u) {
   int count = lightCount();
   if (count == 0) return vec3(0.0);
-  vec4 u = rand4();
   int light = min(int(u.z * float(count)), count - 1);
   LightCone cone = lightCone(hit.position, light);
   if (cone.oneMinusCosMax <= 0.0) return vec3(0.0);
