@@ -92,8 +92,9 @@ export async function measureThroughput(
     spp += chunk;
     elapsed = (performance.now() - start) / 1000;
     const rate = spp / Math.max(elapsed, 1e-3);
-    // Chunks of ~0.25 s keep the loop overhead negligible.
-    chunk = Math.max(1, Math.min(Math.round(rate * 0.25), Math.ceil(rate * (seconds - elapsed))));
+    // Chunks of ~1 s: the loop overhead is negligible and each draw carries
+    // as many samples as the session allows (as in a long CLI render).
+    chunk = Math.max(1, Math.min(Math.round(rate), Math.ceil(rate * (seconds - elapsed))));
   }
   return {
     width: size.width,
