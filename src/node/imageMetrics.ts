@@ -25,17 +25,21 @@ export function relativeMse(image: LinearImage, reference: LinearImage): number 
   return sum / (image.width * image.height * 3);
 }
 
-/** Mean of each channel over each block x block tile (partial tiles at the edges are dropped). */
-export function blockMeans(image: LinearImage, block: number): { cols: number; rows: number; means: Float64Array } {
+/**
+ * Mean of each of the first `colors` channels (3, or 1 for a grey image)
+ * over each block x block tile, `colors` values per block, row-major
+ * (partial tiles at the edges are dropped).
+ */
+export function blockMeans(image: LinearImage, block: number, colors = 3): { cols: number; rows: number; means: Float64Array } {
   const cols = Math.floor(image.width / block);
   const rows = Math.floor(image.height / block);
-  const means = new Float64Array(cols * rows * 3);
+  const means = new Float64Array(cols * rows * colors);
   for (let by = 0; by < rows; by++) {
     for (let bx = 0; bx < cols; bx++) {
       for (let y = by * block; y < (by + 1) * block; y++) {
         for (let x = bx * block; x < (bx + 1) * block; x++) {
           const p = (y * image.width + x) * image.channels;
-          for (let c = 0; c < 3; c++) means[(by * cols + bx) * 3 + c] += image.data[p + c];
+          for (let c = 0; c < colors; c++) means[(by * cols + bx) * colors + c] += image.data[p + c];
         }
       }
     }

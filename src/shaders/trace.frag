@@ -1,5 +1,8 @@
 // Adds uSamplesPerDraw samples per pixel to the running sums.
 // rgb = sum of radiance samples, a = count of rejected (non-finite) samples.
+// Samples are added one by one onto the stored sum, so the result is the
+// same sequence of float additions however the samples are split into draws:
+// a seed gives the same bits whatever the caller's chunking.
 uniform sampler2D uAccumulation;
 uniform uint uFirstSample;
 uniform uint uSamplesPerDraw;
@@ -15,15 +18,15 @@ bool isValidRadiance(vec3 c) {
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  vec4 added = vec4(0.0);
+  vec4 sum = texelFetch(uAccumulation, pixel, 0);
   rngBeginPixel(uvec2(pixel), uSeed);
   for (uint s = 0u; s < uSamplesPerDraw; s++) {
     rngBeginSample(uFirstSample + s);
     vec3 origin, direction;
     generateCameraRay(vec2(pixel), origin, direction);
     vec3 radiance = traceRadiance(origin, direction);
-    if (isValidRadiance(radiance)) added.rgb += radiance;
-    else added.a += 1.0;
+    if (isValidRadiance(radiance)) sum.rgb += radiance;
+    else sum.a += 1.0;
   }
-  outSum = texelFetch(uAccumulation, pixel, 0) + added;
+  outSum = sum;
 }

@@ -6,35 +6,19 @@
  * (never truncated, never left beside a temp file).
  * Needs `npm run build` (dist/cli and dist/web) and Chromium.
  */
-import { spawn } from 'node:child_process';
 import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { type CliResult, ROOT, runPathtrace } from '../support/cli';
 
-const ROOT = fileURLToPath(new URL('../../', import.meta.url));
-const BIN = join(ROOT, 'bin/pathtrace.js');
 const SEED_SCENE = join(ROOT, 'test/fixtures/scenes/seed.json');
 const TIMEOUT = 60_000;
 
-interface Result {
-  code: number | null;
-  stdout: string;
-  stderr: string;
-}
+type Result = CliResult;
 
 function pathtrace(args: string[], env: NodeJS.ProcessEnv = {}, interruptAfterMs?: number): Promise<Result> {
-  return new Promise((resolve, reject) => {
-    const child = spawn(process.execPath, [BIN, ...args], { cwd: dir, env: { ...process.env, PATHTRACE_DEBUG: '', ...env } });
-    let stdout = '';
-    let stderr = '';
-    child.stdout.on('data', (chunk) => (stdout += chunk));
-    child.stderr.on('data', (chunk) => (stderr += chunk));
-    child.on('error', reject);
-    child.on('close', (code) => resolve({ code, stdout, stderr }));
-    if (interruptAfterMs !== undefined) setTimeout(() => child.kill('SIGINT'), interruptAfterMs);
-  });
+  return runPathtrace(args, { cwd: dir, env: { PATHTRACE_DEBUG: '', ...env }, interruptAfterMs });
 }
 
 /** One line on stderr, no stack frames, nothing on stdout. */

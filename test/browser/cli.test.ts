@@ -4,36 +4,21 @@
  * test script runs it first) and Chromium at /usr/bin/chromium (or
  * PATHTRACE_CHROMIUM).
  */
-import { spawn } from 'node:child_process';
 import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { type CliResult, ROOT, runPathtrace } from '../support/cli';
 import { decodePfm } from '../../src/cli/pfm';
 import { decodePng } from '../../src/cli/png';
 
-const ROOT = fileURLToPath(new URL('../../', import.meta.url));
-const BIN = join(ROOT, 'bin/pathtrace.js');
 const scene = (name: string) => join(ROOT, 'test/fixtures/scenes', `${name}.json`);
 const TIMEOUT = 120_000;
 
-interface Result {
-  code: number | null;
-  stdout: string;
-  stderr: string;
-}
+type Result = CliResult;
 
 function pathtrace(args: string[], env: NodeJS.ProcessEnv = {}, cwd = ROOT): Promise<Result> {
-  return new Promise((resolve, reject) => {
-    const child = spawn(process.execPath, [BIN, ...args], { cwd, env: { ...process.env, ...env } });
-    let stdout = '';
-    let stderr = '';
-    child.stdout.on('data', (chunk) => (stdout += chunk));
-    child.stderr.on('data', (chunk) => (stderr += chunk));
-    child.on('error', reject);
-    child.on('close', (code) => resolve({ code, stdout, stderr }));
-  });
+  return runPathtrace(args, { env, cwd });
 }
 
 /** The exact sRGB encoding of a linear value clamped to [0, 1], as an 8-bit code. */
