@@ -84,20 +84,30 @@ async function checkOutputs(pngPath: string, hdrPath: string | undefined): Promi
   if (hdrPath !== undefined) await checkWritable('--hdr', hdrPath);
 }
 
-/** Opens a session, runs `work`, and always closes it; Ctrl-C closes Chromium too. */
+/**
+ * Opens a session, runs `work`, and always closes it. Ctrl-C (or SIGTERM) at
+ * any point, Chromium's start-up included, ends with exit code 130 after
+ * Chromium is closed; Playwright's own signal handlers are off (session.ts).
+ */
 async function withSession<T>(module: SessionModule, progress: Progress, work: (s: CliSession) => Promise<T>): Promise<T> {
   progress.status('starting Chromium...');
-  let session: CliSession;
-  try {
-    session = await module.openRenderSession();
-  } catch (error) {
-    // ChromiumNotFoundError's message already says how to install Chromium.
-    const name = (error as Error | undefined)?.name ?? '';
-    const message = SELF_EXPLAINING_ERRORS.has(name) ? oneLine((error as Error).message) : `cannot start Chromium: ${firstLine(error)}`;
-    throw failure(message, error);
-  }
   const interrupted = interruption();
+  const opening = module.openRenderSession();
+  let session: CliSession | undefined;
   try {
+    try {
+      session = await Promise.race([opening, interrupted.promise]);
+    } catch (error) {
+      if (error instanceof CliError) {
+        // Interrupted while Chromium starts: close it once it is up.
+        opening.then((s) => s.close()).catch(() => undefined);
+        throw error;
+      }
+      // ChromiumNotFoundError's message already says how to install Chromium.
+      const name = (error as Error | undefined)?.name ?? '';
+      const message = SELF_EXPLAINING_ERRORS.has(name) ? oneLine((error as Error).message) : `cannot start Chromium: ${firstLine(error)}`;
+      throw failure(message, error);
+    }
     const working = work(session);
     working.catch(() => undefined);
     return await Promise.race([working, interrupted.promise]);
@@ -106,7 +116,7 @@ async function withSession<T>(module: SessionModule, progress: Progress, work: (
     throw failure(`render failed: ${firstLine(error)}`, error);
   } finally {
     interrupted.dispose();
-    await session.close().catch(() => undefined);
+    await session?.close().catch(() => undefined);
   }
 }
 

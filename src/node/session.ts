@@ -30,6 +30,19 @@ export const CHROMIUM_ARGS = [
   '--no-first-run',
 ];
 
+/**
+ * Playwright's own signal handlers would close Chromium and exit the process
+ * on Ctrl-C before its owner (the CLI) can report and clean up; owners handle
+ * signals themselves.
+ */
+const LAUNCH_OPTIONS = {
+  headless: true,
+  args: CHROMIUM_ARGS,
+  handleSIGINT: false,
+  handleSIGTERM: false,
+  handleSIGHUP: false,
+} as const;
+
 export class ChromiumNotFoundError extends Error {
   constructor(path: string) {
     super(`Chromium not found at ${path}: install it with "apt-get install chromium" or set PATHTRACE_CHROMIUM to its path`);
@@ -81,7 +94,7 @@ export function chromiumPath(options: SessionOptions = {}): string {
 }
 
 export async function launchChromium(options: SessionOptions = {}): Promise<Browser> {
-  return chromium.launch({ executablePath: chromiumPath(options), headless: true, args: CHROMIUM_ARGS });
+  return chromium.launch({ executablePath: chromiumPath(options), ...LAUNCH_OPTIONS });
 }
 
 /** Paths per draw: ~0.4 s on SwiftShader, well under the GPU watchdog; more per draw amortizes the per-draw cost. */
@@ -93,7 +106,7 @@ export async function openRenderSession(options: SessionOptions = {}): Promise<R
   const server: StaticServer = await serveDirectory(root);
   let browser: Browser | undefined;
   try {
-    browser = await chromium.launch({ executablePath: executable, headless: true, args: CHROMIUM_ARGS });
+    browser = await chromium.launch({ executablePath: executable, ...LAUNCH_OPTIONS });
     const page = await browser.newPage();
     const pageErrors: string[] = [];
     page.on('pageerror', (error) => pageErrors.push(error.message));
