@@ -54,13 +54,23 @@ const UNIFORM_TYPES: Record<string, string> = {
   uFirstSample: 'uint',
   uSamplesPerDraw: 'uint',
   uSeed: 'uint',
+  uSceneData: 'sampler2D',
 };
 
 const SCENE_BLOCK_BINDING = 0;
+/** Texture unit of the scene data texture (unit 0 holds the running sums). */
+const SCENE_TEXTURE_UNIT = 1;
 
 export class TracePass {
   private readonly program: Program;
   private readonly sceneBuffer: WebGLBuffer;
+  /**
+   * The same packed scene as the uniform block, one RGBA32F texel per vec4
+   * (row 0): the loops over spheres and lights index it dynamically, and in
+   * SwiftShader a texelFetch is much cheaper than a dynamically indexed,
+   * bounds-checked uniform-block read (per-lane conditional loads).
+   */
+  private readonly sceneTexture: WebGLTexture;
 
   constructor(private readonly gl: WebGL2RenderingContext, sampler: SamplerKind = 'kronecker') {
     this.program = new Program(gl, VERTEX_CHUNKS, TRACE_CHUNKS, {
@@ -73,14 +83,24 @@ export class TracePass {
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
     gl.bufferData(gl.UNIFORM_BUFFER, BLOCK.size * 16, gl.DYNAMIC_DRAW);
     gl.bindBuffer(gl.UNIFORM_BUFFER, null);
+    this.sceneTexture = gl.createTexture()!;
+    gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
+    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, BLOCK.size, 1);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    gl.bindTexture(gl.TEXTURE_2D, null);
   }
 
   /** Uploads the scene: geometry and materials to the uniform block, camera to uniforms. */
   setScene(scene: Scene, width: number, height: number): void {
     const gl = this.gl;
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
-    gl.bufferSubData(gl.UNIFORM_BUFFER, 0, packScene(scene));
+    const packed = packScene(scene);
+    gl.bufferSubData(gl.UNIFORM_BUFFER, 0, packed);
     gl.bindBuffer(gl.UNIFORM_BUFFER, null);
+    gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
+    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, BLOCK.size, 1, gl.RGBA, gl.FLOAT, packed);
+    gl.bindTexture(gl.TEXTURE_2D, null);
     const frame = cameraFrame(scene.camera);
     this.program.use().setUniforms(
       {
@@ -94,6 +114,7 @@ export class TracePass {
         uResolution: [width, height],
         uMaxBounces: scene.render.maxBounces,
         uAccumulation: 0,
+        uSceneData: SCENE_TEXTURE_UNIT,
       },
       UNIFORM_TYPES,
     );
@@ -107,6 +128,8 @@ export class TracePass {
       UNIFORM_TYPES,
     );
     gl.bindBufferBase(gl.UNIFORM_BUFFER, SCENE_BLOCK_BINDING, this.sceneBuffer);
+    gl.activeTexture(gl.TEXTURE0 + SCENE_TEXTURE_UNIT);
+    gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
     gl.activeTexture(gl.TEXTURE0);
     gl.bindTexture(gl.TEXTURE_2D, targets.read.texture);
     gl.bindFramebuffer(gl.FRAMEBUFFER, targets.write.framebuffer);
@@ -119,5 +142,6 @@ export class TracePass {
   dispose(): void {
     this.program.dispose();
     this.gl.deleteBuffer(this.sceneBuffer);
+    this.gl.deleteTexture(this.sceneTexture);
   }
 }

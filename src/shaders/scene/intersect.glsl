@@ -12,25 +12,31 @@ struct Hit {
   float scale;    // size of the hit object, for the self-intersection offset
 };
 
-// Nearest t in (0, tMax) where the ray (unit direction) meets the sphere, or
-// INFINITY. Computes the discriminant from the ray's closest approach to the
-// centre (Haines et al., Ray Tracing Gems ch. 7) to stay accurate for large
-// radii and distant spheres.
-float intersectSphere(vec3 origin, vec3 direction, vec4 sphere, float tMax) {
+// Nearest t > 0 where the ray (unit direction) meets the sphere, or a value
+// <= 0 (no hit). Branch-free: SwiftShader runs both sides of every branch.
+// Computes the discriminant from the ray's closest approach to the centre
+// (Haines et al., Ray Tracing Gems ch. 7) to stay accurate for large radii
+// and distant spheres; the near root without cancellation: q = -b - sign(b) h
+// and c / q.
+float sphereHitT(vec3 origin, vec3 direction, vec4 sphere) {
   vec3 oc = origin - sphere.xyz;
   float b = dot(oc, direction);
   vec3 closest = oc - b * direction;
-  float h = sphere.w * sphere.w - dot(closest, closest);
-  if (h < 0.0) return INFINITY;
-  h = sqrt(h);
-  // Near root without cancellation: -b - sign(b) h and c / that.
-  float q = -b - (b >= 0.0 ? h : -h);
-  float c = dot(oc, oc) - sphere.w * sphere.w;
-  float t0 = q;
+  float r2 = sphere.w * sphere.w;
+  float h = r2 - dot(closest, closest);
+  float s = sqrt(max(h, 0.0));
+  float q = -b - (b >= 0.0 ? s : -s);
+  float c = dot(oc, oc) - r2;
   float t1 = q != 0.0 ? c / q : 0.0;
-  float tNear = min(t0, t1);
-  float tFar = max(t0, t1);
+  float tNear = min(q, t1);
+  float tFar = max(q, t1);
   float t = tNear > 0.0 ? tNear : tFar;
+  return h >= 0.0 ? t : -1.0;
+}
+
+// Nearest t in (0, tMax) where the ray (unit direction) meets the sphere, or INFINITY.
+float intersectSphere(vec3 origin, vec3 direction, vec4 sphere, float tMax) {
+  float t = sphereHitT(origin, direction, sphere);
   return (t > 0.0 && t < tMax) ? t : INFINITY;
 }
 
@@ -41,20 +47,28 @@ float intersectGround(vec3 origin, vec3 direction, float tMax) {
 }
 
 Hit intersectScene(vec3 origin, vec3 direction) {
-  Hit hit;
-  hit.t = INFINITY;
-  hit.kind = HIT_NONE;
-  hit.index = -1;
+  // The loops keep only the distance and the object's index; the rest of
+  // the hit is derived once afterwards.
+  float tMin = INFINITY;
+  int sphere = -1;
   for (int i = 0; i < sphereCount(); i++) {
-    float t = intersectSphere(origin, direction, sphereGeometry(i), hit.t);
-    if (t < hit.t) { hit.t = t; hit.kind = HIT_SPHERE; hit.index = i; }
+    float t = sphereHitT(origin, direction, sphereGeometry(i));
+    bool closer = t > 0.0 && t < tMin;
+    tMin = closer ? t : tMin;
+    sphere = closer ? i : sphere;
   }
+  int light = -1;
   for (int i = 0; i < lightCount(); i++) {
-    float t = intersectSphere(origin, direction, lightGeometry(i), hit.t);
-    if (t < hit.t) { hit.t = t; hit.kind = HIT_LIGHT; hit.index = i; }
+    float t = sphereHitT(origin, direction, lightGeometry(i));
+    bool closer = t > 0.0 && t < tMin;
+    tMin = closer ? t : tMin;
+    light = closer ? i : light;
   }
-  float tGround = intersectGround(origin, direction, hit.t);
-  if (tGround < hit.t) { hit.t = tGround; hit.kind = HIT_GROUND; }
+  float tGround = intersectGround(origin, direction, tMin);
+  Hit hit;
+  hit.t = min(tMin, tGround);
+  hit.kind = tGround < tMin ? HIT_GROUND : light >= 0 ? HIT_LIGHT : sphere >= 0 ? HIT_SPHERE : HIT_NONE;
+  hit.index = light >= 0 ? light : sphere;
 
   if (hit.kind == HIT_GROUND) {
     hit.position = origin + hit.t * direction;
@@ -62,11 +76,11 @@ Hit intersectScene(vec3 origin, vec3 direction) {
     hit.normal = vec3(0.0, 1.0, 0.0);
     hit.scale = abs(groundHeight());
   } else if (hit.kind != HIT_NONE) {
-    vec4 sphere = hit.kind == HIT_SPHERE ? sphereGeometry(hit.index) : lightGeometry(hit.index);
+    vec4 geometry = hit.kind == HIT_SPHERE ? sphereGeometry(hit.index) : lightGeometry(hit.index);
     vec3 p = origin + hit.t * direction;
-    hit.normal = normalize(p - sphere.xyz);
-    hit.position = sphere.xyz + sphere.w * hit.normal;  // re-project onto the surface
-    hit.scale = sphere.w;
+    hit.normal = normalize(p - geometry.xyz);
+    hit.position = geometry.xyz + geometry.w * hit.normal;  // re-project onto the surface
+    hit.scale = geometry.w;
   }
   return hit;
 }
@@ -74,13 +88,16 @@ Hit intersectScene(vec3 origin, vec3 direction) {
 // True when something blocks the segment from origin to origin + tMax * direction.
 // `skipLight` is the light the segment ends on.
 bool occluded(vec3 origin, vec3 direction, float tMax, int skipLight) {
+  bool blocked = false;
   for (int i = 0; i < sphereCount(); i++) {
-    if (intersectSphere(origin, direction, sphereGeometry(i), tMax) < tMax) return true;
+    float t = sphereHitT(origin, direction, sphereGeometry(i));
+    blocked = blocked || (t > 0.0 && t < tMax);
   }
   for (int i = 0; i < lightCount(); i++) {
-    if (i != skipLight && intersectSphere(origin, direction, lightGeometry(i), tMax) < tMax) return true;
+    float t = sphereHitT(origin, direction, lightGeometry(i));
+    blocked = blocked || (i != skipLight && t > 0.0 && t < tMax);
   }
-  return intersectGround(origin, direction, tMax) < tMax;
+  return blocked || intersectGround(origin, direction, tMax) < tMax;
 }
 
 // Origin for a ray leaving `hit` into the side of `side` (a direction).

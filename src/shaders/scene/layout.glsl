@@ -8,6 +8,12 @@ layout(std140) uniform SceneBlock {
   vec4 uCounts;        // x = spheres, y = lights, z = ground enabled (0/1)
 };
 
+// The same data as a texture (row 0, one texel per vec4) for the dynamically
+// indexed arrays: in SwiftShader a texelFetch costs far less than a
+// dynamically indexed (per-lane, bounds-checked) uniform-block read.
+uniform highp sampler2D uSceneData;
+vec4 sceneData(int vec4Index) { return texelFetch(uSceneData, ivec2(vec4Index, 0), 0); }
+
 struct Material {
   vec3 color;
   float roughness;
@@ -17,13 +23,13 @@ int sphereCount() { return int(uCounts.x); }
 int lightCount() { return int(uCounts.y); }
 bool groundEnabled() { return uCounts.z > 0.5; }
 
-vec4 sphereGeometry(int i) { return uSpheres[i * SPHERE_VEC4S + SPHERE_GEOMETRY]; }
+vec4 sphereGeometry(int i) { return sceneData(BLOCK_SPHERES + i * SPHERE_VEC4S + SPHERE_GEOMETRY); }
 Material sphereMaterial(int i) {
-  vec4 m = uSpheres[i * SPHERE_VEC4S + SPHERE_MATERIAL];
+  vec4 m = sceneData(BLOCK_SPHERES + i * SPHERE_VEC4S + SPHERE_MATERIAL);
   return Material(m.rgb, m.a);
 }
-vec4 lightGeometry(int i) { return uLights[i * LIGHT_VEC4S + LIGHT_GEOMETRY]; }
-vec3 lightRadiance(int i) { return uLights[i * LIGHT_VEC4S + LIGHT_RADIANCE].rgb; }
+vec4 lightGeometry(int i) { return sceneData(BLOCK_LIGHTS + i * LIGHT_VEC4S + LIGHT_GEOMETRY); }
+vec3 lightRadiance(int i) { return sceneData(BLOCK_LIGHTS + i * LIGHT_VEC4S + LIGHT_RADIANCE).rgb; }
 float groundHeight() { return uGround[GROUND_GEOMETRY].x; }
 Material groundMaterial() {
   vec4 m = uGround[GROUND_MATERIAL];

@@ -1,0 +1,178 @@
+/**
+ * A/B of trace-shader variants in one Chromium, interleaved to cancel the
+ * machine's load swings: path rate per CPU second of the GPU process (median
+ * of alternating runs), compile+first-draw time, and optionally relMSE vs the
+ * reference at fixed spp (a bias check). Each variant is a directory holding
+ * a copy of src/shaders (default: the working tree's), optionally with text
+ * patches applied (PATCHES below); the page's trace fragment shader is
+ * replaced by the variant's text at shaderSource() time, so no rebuild of the
+ * page is needed (but dist/web must exist: npx vite build).
+ *   npx tsx bench/shader-ab.ts --variants base=src/shaders,noShadow=src/shaders+noShadow [--scene seed] [--size 512x384] [--rounds 5] [--seconds 2] [--spp 0] [--seeds 2]
+ */
+import { readFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { relativeMse, type LinearImage } from '../src/node/imageMetrics';
+import { openRenderSession, type LoadOptions } from '../src/node/session';
+import { layoutDefines } from '../src/render/layout';
+import { buildShader } from '../src/render/gl/shaderSource';
+import { parseSceneText } from '../src/scene/schema';
+import { decodePfm } from '../src/cli/pfm';
+import { gpuProcessCpuSeconds, projectRoot } from './common';
+import { downsample } from './run';
+
+const CHUNKS = [
+  'common/math.glsl',
+  'common/rng.glsl',
+  'common/sampling.glsl',
+  'scene/layout.glsl',
+  'scene/intersect.glsl',
+  'bsdf/ggx.glsl',
+  'bsdf/material.glsl',
+  'lights/sphere_light.glsl',
+  'camera.glsl',
+  'integrator.glsl',
+  'trace.frag',
+];
+
+/** Named text edits for cost-share measurements: [search, replacement] pairs. */
+const PATCHES: Record<string, [string | RegExp, string][]> = {
+  // NEE's shadow ray loop removed (light always visible).
+  noShadow: [['if (occluded(origin, wiWorld, tLight, light)) return vec3(0.0);', '']],
+  // The whole NEE call removed.
+  noNee: [['radiance += throughput * sampleDirectLight(hit, frame, wo, material, uLight.xyz);', '']],
+  // BSDF evaluation in NEE replaced by a constant.
+  noNeeEval: [['vec3 f = evalMaterial(m, wo, wi, bsdfPdf);', 'vec3 f = vec3(wi.z); bsdfPdf = wi.z;']],
+  // BSDF sampling replaced by a trivial cosine-ish direction.
+  noBsdfSample: [['BsdfSample bs = sampleMaterial(material, wo, uBsdf.xyz);',
+    'BsdfSample bs = BsdfSample(normalize(vec3(uBsdf.xy - 0.5, 1.0)), material.color, 1.0, false, true);']],
+  // Light-cone construction + cone sampling replaced by the axis.
+  noCone: [['vec3 wiWorld = basisAround(cone.axis) * sampleUniformCone(u.xy, cone.oneMinusCosMax);', 'vec3 wiWorld = cone.axis;']],
+  // RNG hashing replaced by a cheap non-random function.
+  noRng: [[/uvec4 h = pcg4d\(uvec4\(rngPixelKey, rngSampleIndex, rngDimension\)\);/, 'uvec4 h = uvec4(rngPixelKey, rngSampleIndex, rngDimension) * 2654435761u;']],
+  // Closest-hit loop over spheres removed (lights and ground remain).
+  noSphereHit: [[/for \(int i = 0; i < sphereCount\(\); i\+\+\) \{\n    float t = intersectSphere\(origin, direction, sphereGeometry\(i\), hit\.t\);\n    if \(t < hit\.t\) \{ hit\.t = t; hit\.kind = HIT_SPHERE; hit\.index = i; \}\n  \}/, '']],
+  // Scene fetch cost: sphere geometry from arithmetic instead of the uniform block (wrong image).
+  fakeFetch: [['vec4 sphereGeometry(int i) { return uSpheres[i * SPHERE_VEC4S + SPHERE_GEOMETRY]; }',
+    'vec4 sphereGeometry(int i) { float f = float(i); return vec4(f - 2.0, 0.5 + 0.1 * f, 0.3 * f, 0.5); }']],
+  // The camera: a fixed direction per pixel.
+  noCamera: [[/void generateCameraRay\(vec2 pixel, out vec3 origin, out vec3 direction\) \{/,
+    'void generateCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) { origin = uCameraPosition; direction = normalize(vec3(pixel / uResolution - 0.5, -1.0)); return; }\nvoid unusedCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) {']],
+};
+
+function option(argv: string[], name: string, fallback: string): string {
+  const i = argv.indexOf(`--${name}`);
+  return i >= 0 && i + 1 < argv.length ? argv[i + 1] : fallback;
+}
+
+const median = (v: number[]) => [...v].sort((a, b) => a - b)[Math.floor(v.length / 2)];
+const mean = (v: number[]) => v.reduce((a, b) => a + b, 0) / v.length;
+
+function variantSource(spec: string, root: URL): string {
+  const [dir, ...patches] = spec.split('+');
+  const base = new URL(dir.endsWith('/') ? dir : `${dir}/`, root);
+  const chunks = CHUNKS.map((name) => ({ name, source: readFileSync(new URL(name, base), 'utf8') }));
+  let text = buildShader(chunks, { ...layoutDefines(), LOW_DISCREPANCY: 1 }).text;
+  for (const p of patches) {
+    const edits = PATCHES[p];
+    if (!edits) throw new Error(`unknown patch ${p}`);
+    for (const [search, replacement] of edits) {
+      const before = text;
+      text = text.replace(search, replacement);
+      if (text === before) throw new Error(`patch ${p}: pattern not found: ${String(search)}`);
+    }
+  }
+  return text;
+}
+
+async function main(argv: string[]): Promise<void> {
+  const root = projectRoot();
+  const variants = option(argv, 'variants', 'base=src/shaders').split(',').map((v) => {
+    const [name, spec] = v.split('=');
+    return { name, text: variantSource(spec ?? name, spec?.startsWith('/') ? new URL('file:///') : root) };
+  });
+  const sceneName = option(argv, 'scene', 'seed');
+  const [w, h] = option(argv, 'size', '512x384').split('x').map(Number);
+  const rounds = Number(option(argv, 'rounds', '5'));
+  const seconds = Number(option(argv, 'seconds', '2'));
+  const spp = Number(option(argv, 'spp', '0'));
+  const seeds = Number(option(argv, 'seeds', '2'));
+  const scene = parseSceneText(readFileSync(new URL(`test/fixtures/scenes/${sceneName}.json`, root), 'utf8'));
+  if (argv.includes('--bounces')) scene.render.maxBounces = Number(option(argv, 'bounces', '6'));
+
+  const session = await openRenderSession();
+  const page = session.page;
+  await page.addInitScript(() => {
+    const original = WebGL2RenderingContext.prototype.shaderSource;
+    WebGL2RenderingContext.prototype.shaderSource = function (shader: WebGLShader, text: string) {
+      const replacement = (window as unknown as { __traceSource?: string }).__traceSource;
+      if (replacement && text.includes('traceRadiance(') && text.includes('uSamplesPerDraw')) text = replacement;
+      return original.call(this, shader, text);
+    };
+  });
+  await page.reload();
+  await page.waitForFunction(() => document.body.dataset.ready === 'true');
+  const use = (text: string) => page.evaluate((t) => ((window as unknown as { __traceSource?: string }).__traceSource = t), text);
+
+  try {
+    const cpu = new Map<string, number[]>(variants.map((v) => [v.name, []]));
+    const wall = new Map<string, number[]>(variants.map((v) => [v.name, []]));
+    const compile = new Map<string, number[]>(variants.map((v) => [v.name, []]));
+    for (let r = 0; r < rounds; r++) {
+      for (const v of r % 2 ? [...variants].reverse() : variants) {
+        await use(v.text);
+        const t0 = performance.now();
+        await session.load(scene, { width: w, height: h, seed: 1 + r } as LoadOptions);
+        await session.render(1);
+        compile.get(v.name)!.push((performance.now() - t0) / 1000);
+        let done = 0;
+        let chunk = 1;
+        const cpuStart = gpuProcessCpuSeconds() ?? NaN;
+        const start = performance.now();
+        let elapsed = 0;
+        while (elapsed < seconds) {
+          await session.render(chunk);
+          done += chunk;
+          elapsed = (performance.now() - start) / 1000;
+          chunk = Math.max(1, Math.round((done / elapsed) * 0.5));
+        }
+        const used = (gpuProcessCpuSeconds() ?? NaN) - cpuStart;
+        cpu.get(v.name)!.push((done * w * h) / used / 1e6);
+        wall.get(v.name)!.push((done * w * h) / elapsed / 1e6);
+      }
+    }
+    const errors = new Map<string, number>();
+    if (spp > 0) {
+      const pfm = decodePfm(readFileSync(new URL(`test/fixtures/references/${sceneName}.pfm`, root)));
+      const reference: LinearImage = { width: pfm.width, height: pfm.height, channels: 3, data: pfm.rgb };
+      for (const v of variants) {
+        await use(v.text);
+        const e: number[] = [];
+        for (let seed = 1; seed <= seeds; seed++) {
+          await session.load(scene, { width: pfm.width, height: pfm.height, seed: 100 + seed } as LoadOptions);
+          await session.render(spp);
+          const image = { width: pfm.width, height: pfm.height, channels: 4, data: await session.readLinear() };
+          e.push(relativeMse(downsample(image, 1), reference));
+        }
+        errors.set(v.name, mean(e));
+      }
+    }
+    const base = median(cpu.get(variants[0].name)!);
+    for (const v of variants) {
+      const c = median(cpu.get(v.name)!);
+      console.log(
+        `${v.name.padEnd(16)} ${c.toFixed(3)} Mpath/CPU-s (x${(c / base).toFixed(2)}; ms/spp ${((w * h) / c / 1e3).toFixed(1)}) ` +
+          `runs ${cpu.get(v.name)!.map((x) => x.toFixed(2)).join(' ')} | wall ${median(wall.get(v.name)!).toFixed(3)} | ` +
+          `compile+1spp ${median(compile.get(v.name)!).toFixed(2)} s (first ${compile.get(v.name)![0].toFixed(2)})` +
+          (errors.has(v.name) ? ` | relMSE@${spp}spp ${errors.get(v.name)!.toExponential(3)}` : ''),
+      );
+    }
+  } finally {
+    await session.close();
+  }
+}
+
+void fileURLToPath;
+main(process.argv.slice(2)).catch((error) => {
+  console.error(error);
+  process.exit(1);
+});
