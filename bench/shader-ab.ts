@@ -50,9 +50,9 @@ const PATCHES: Record<string, [string | RegExp, string][]> = {
   // RNG hashing replaced by a cheap non-random function.
   noRng: [[/uvec4 h = pcg4d\(uvec4\(rngPixelKey, rngSampleIndex, rngDimension\)\);/, 'uvec4 h = uvec4(rngPixelKey, rngSampleIndex, rngDimension) * 2654435761u;']],
   // Closest-hit loop over spheres removed (lights and ground remain).
-  noSphereHit: [[/for \(int i = 0; i < sphereCount\(\); i\+\+\) \{\n    float t = intersectSphere\(origin, direction, sphereGeometry\(i\), hit\.t\);\n    if \(t < hit\.t\) \{ hit\.t = t; hit\.kind = HIT_SPHERE; hit\.index = i; \}\n  \}/, '']],
-  // Scene fetch cost: sphere geometry from arithmetic instead of the uniform block (wrong image).
-  fakeFetch: [['vec4 sphereGeometry(int i) { return uSpheres[i * SPHERE_VEC4S + SPHERE_GEOMETRY]; }',
+  noSphereHit: [['for (int i = 0; i < sphereCount(); i++) {\n    float t = sphereHitT(', 'for (int i = 0; i < 0; i++) {\n    float t = sphereHitT(']],
+  // Scene fetch cost: sphere geometry from arithmetic instead of the scene data (wrong image).
+  fakeFetch: [[/vec4 sphereGeometry\(int i\) \{[^\n]*\}/,
     'vec4 sphereGeometry(int i) { float f = float(i); return vec4(f - 2.0, 0.5 + 0.1 * f, 0.3 * f, 0.5); }']],
   // The camera: a fixed direction per pixel.
   noCamera: [[/void generateCameraRay\(vec2 pixel, out vec3 origin, out vec3 direction\) \{/,
