@@ -22,8 +22,24 @@ export const BLOCK = {
   ground: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S,
   environment: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S + GROUND_VEC4S,
   counts: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S + GROUND_VEC4S + 1,
-  size: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S + GROUND_VEC4S + 2,
+  guides: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S + GROUND_VEC4S + 2,
+  size: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S + GROUND_VEC4S + 2 + 2,
 } as const;
+
+/**
+ * Caustic guiding (src/shaders/lights/caustic_guide.glsl): at most this many
+ * (mirror sphere, light) pairs; the probability of drawing a rough vertex's
+ * next direction towards a light's image in a mirror; how much wider than
+ * the estimated image the cone is; fixed-point iterations for the mirror point.
+ */
+export const MAX_GUIDES = 2;
+export const GUIDE_PROBABILITY = 0.1;
+export const GUIDE_MARGIN = 2.0;
+export const GUIDE_ITERATIONS = 1;
+/** A sphere is a guiding mirror when its specular lobe is a delta (as in material.glsl) and carries at least this weight. */
+export const GUIDE_MIN_SPECULAR = 0.5;
+/** material.glsl treats GGX lobes with alpha = r^2 below this as ideal mirrors. */
+export const SMOOTH_ALPHA = 1e-3;
 
 /** Tone mapping operators of the display pass, by name. */
 export const TONEMAPS = ['none', 'aces', 'neutral', 'agx'] as const;
@@ -79,6 +95,11 @@ export function layoutDefines(): Record<string, string | number> {
     GROUND_GEOMETRY: GROUND_FIELDS.GEOMETRY,
     GROUND_MATERIAL: GROUND_FIELDS.MATERIAL,
     BLOCK_SPHERES: BLOCK.spheres,
+    MAX_GUIDES,
+    GUIDE_PROBABILITY: GUIDE_PROBABILITY.toFixed(6),
+    GUIDE_MARGIN: GUIDE_MARGIN.toFixed(6),
+    GUIDE_ITERATIONS,
+    SMOOTH_ALPHA: SMOOTH_ALPHA.toExponential(),
     BLOCK_LIGHTS: BLOCK.lights,
     MAX_RADIANCE: MAX_RADIANCE.toExponential(),
     RNG_CAMERA_DIMENSIONS: `${RNG_CAMERA_DIMENSIONS}u`,

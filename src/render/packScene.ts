@@ -3,7 +3,9 @@
  * Pure: no GL, so it is unit-tested directly.
  */
 import type { Material, Scene } from '../scene/types';
-import { BLOCK, GROUND_FIELDS, LIGHT_FIELDS, LIGHT_VEC4S, SPHERE_FIELDS, SPHERE_VEC4S } from './layout';
+import {
+  BLOCK, GROUND_FIELDS, GUIDE_MIN_SPECULAR, LIGHT_FIELDS, LIGHT_VEC4S, MAX_GUIDES, SMOOTH_ALPHA, SPHERE_FIELDS, SPHERE_VEC4S,
+} from './layout';
 
 export function packScene(scene: Scene): Float32Array {
   const data = new Float32Array(BLOCK.size * 4);
@@ -26,6 +28,27 @@ export function packScene(scene: Scene): Float32Array {
   }
   const environment = scene.environment;
   if (environment) put(BLOCK.environment, environment.color.map((c) => c * environment.intensity));
-  put(BLOCK.counts, [scene.spheres.length, scene.lights.length, scene.ground ? 1 : 0, 0]);
+  const guides = causticGuides(scene);
+  guides.forEach(([sphere, light], i) => put(BLOCK.guides + i, [sphere, light, 0, 0]));
+  put(BLOCK.counts, [scene.spheres.length, scene.lights.length, scene.ground ? 1 : 0, guides.length]);
   return data;
+}
+
+/**
+ * The (mirror sphere, light) pairs worth guiding towards, brightest first:
+ * spheres whose specular lobe is an ideal mirror (alpha below SMOOTH_ALPHA)
+ * with most of the weight, paired with every light, ranked by the light's
+ * power times the mirror's size. At most MAX_GUIDES.
+ */
+export function causticGuides(scene: Scene): [number, number][] {
+  const pairs: { pair: [number, number]; score: number }[] = [];
+  scene.spheres.forEach((sphere, s) => {
+    const r = sphere.material.roughness;
+    if (r * r >= SMOOTH_ALPHA || 1 - r < GUIDE_MIN_SPECULAR) return;
+    scene.lights.forEach((light, l) => {
+      const power = light.intensity * Math.max(...light.color) * light.radius ** 2;
+      if (power > 0) pairs.push({ pair: [s, l], score: power * sphere.radius ** 2 * Math.max(...sphere.material.color) });
+    });
+  });
+  return pairs.sort((a, b) => b.score - a.score).slice(0, MAX_GUIDES).map((p) => p.pair);
 }

@@ -53,13 +53,16 @@ vec3 traceRadiance(vec3 origin, vec3 direction) {
     }
 #endif
 
+    // Caustic guides at this vertex (see lights/caustic_guide.glsl).
+    buildGuides(hit.position, normal, material);
+
     // Sample illumination from lights to find path contribution.
     if (hasSmoothLobe(material)) {
       radiance += throughput * sampleDirectLight(hit, frame, wo, material, uLight.xyz);
     }
 
-    // Sample BSDF to get new path direction.
-    BsdfSample bs = sampleMaterial(material, wo, uBsdf.xyz);
+    // Sample BSDF (mixed with the caustic guides) to get new path direction.
+    BsdfSample bs = sampleGuided(material, frame, wo, uBsdf, uLight.w);
     if (!bs.valid) break;
     throughput *= bs.weight;
     previousDelta = bs.isDelta;

@@ -7,17 +7,18 @@ import layoutGlsl from '../../shaders/scene/layout.glsl?raw';
 import intersectGlsl from '../../shaders/scene/intersect.glsl?raw';
 import ggxGlsl from '../../shaders/bsdf/ggx.glsl?raw';
 import materialGlsl from '../../shaders/bsdf/material.glsl?raw';
+import causticGuideGlsl from '../../shaders/lights/caustic_guide.glsl?raw';
 import sphereLightGlsl from '../../shaders/lights/sphere_light.glsl?raw';
 import cameraGlsl from '../../shaders/camera.glsl?raw';
 import integratorGlsl from '../../shaders/integrator.glsl?raw';
 import traceFrag from '../../shaders/trace.frag?raw';
-import { cameraFrame, inverseViewProjection } from '../../scene/camera';
+import { type CameraFrame, cameraFrame, inverseViewProjection } from '../../scene/camera';
 import type { Scene } from '../../scene/types';
 import { Program } from '../gl/program';
 import type { ShaderChunk } from '../gl/shaderSource';
 import type { PingPong } from '../gl/targets';
 import { BLOCK, layoutDefines, type SamplerKind } from '../layout';
-import { packScene } from '../packScene';
+import { causticGuides, packScene } from '../packScene';
 
 export const VERTEX_CHUNKS: ShaderChunk[] = [{ name: 'fullscreen.vert', source: fullscreenVert }];
 
@@ -30,6 +31,7 @@ export const SCENE_CHUNKS: ShaderChunk[] = [
   { name: 'scene/intersect.glsl', source: intersectGlsl },
   { name: 'bsdf/ggx.glsl', source: ggxGlsl },
   { name: 'bsdf/material.glsl', source: materialGlsl },
+  { name: 'lights/caustic_guide.glsl', source: causticGuideGlsl },
   { name: 'lights/sphere_light.glsl', source: sphereLightGlsl },
 ];
 
@@ -62,7 +64,10 @@ const SCENE_BLOCK_BINDING = 0;
 const SCENE_TEXTURE_UNIT = 1;
 
 export class TracePass {
-  private readonly program: Program;
+  /** Both variants are compiled up front, so no scene edit ever compiles. */
+  private readonly programs: { plain: Program; guided: Program };
+  /** The variant for the current scene: with caustic guiding only when it has guides. */
+  private program: Program;
   private readonly sceneBuffer: WebGLBuffer;
   /**
    * The same packed scene as the uniform block, one RGBA32F texel per vec4
@@ -73,12 +78,17 @@ export class TracePass {
   private readonly sceneTexture: WebGLTexture;
 
   constructor(private readonly gl: WebGL2RenderingContext, sampler: SamplerKind = 'kronecker') {
-    this.program = new Program(gl, VERTEX_CHUNKS, TRACE_CHUNKS, {
-      ...layoutDefines(),
-      LOW_DISCREPANCY: sampler === 'kronecker' ? 1 : 0,
-    });
-    const blockIndex = gl.getUniformBlockIndex(this.program.handle, 'SceneBlock');
-    gl.uniformBlockBinding(this.program.handle, blockIndex, SCENE_BLOCK_BINDING);
+    const variant = (guiding: boolean) => {
+      const program = new Program(gl, VERTEX_CHUNKS, TRACE_CHUNKS, {
+        ...layoutDefines(),
+        LOW_DISCREPANCY: sampler === 'kronecker' ? 1 : 0,
+        CAUSTIC_GUIDING: guiding ? 1 : 0,
+      });
+      gl.uniformBlockBinding(program.handle, gl.getUniformBlockIndex(program.handle, 'SceneBlock'), SCENE_BLOCK_BINDING);
+      return program;
+    };
+    this.programs = { plain: variant(false), guided: variant(true) };
+    this.program = this.programs.plain;
     this.sceneBuffer = gl.createBuffer()!;
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
     gl.bufferData(gl.UNIFORM_BUFFER, BLOCK.size * 16, gl.DYNAMIC_DRAW);
@@ -101,8 +111,13 @@ export class TracePass {
     gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
     gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, BLOCK.size, 1, gl.RGBA, gl.FLOAT, packed);
     gl.bindTexture(gl.TEXTURE_2D, null);
+    this.program = causticGuides(scene).length > 0 ? this.programs.guided : this.programs.plain;
     const frame = cameraFrame(scene.camera);
-    this.program.use().setUniforms(
+    for (const program of [this.programs.plain, this.programs.guided]) this.setCameraUniforms(program, scene, frame, width, height);
+  }
+
+  private setCameraUniforms(program: Program, scene: Scene, frame: CameraFrame, width: number, height: number): void {
+    program.use().setUniforms(
       {
         uInverseViewProjection: inverseViewProjection(scene.camera, width / height),
         uCameraPosition: frame.position,
@@ -140,7 +155,8 @@ export class TracePass {
   }
 
   dispose(): void {
-    this.program.dispose();
+    this.programs.plain.dispose();
+    this.programs.guided.dispose();
     this.gl.deleteBuffer(this.sceneBuffer);
     this.gl.deleteTexture(this.sceneTexture);
   }

@@ -5,10 +5,9 @@
 // the viewer). The lobes are chosen with probabilities (1 - r) and r; the
 // pdf of a direction is the mixture of both lobes' pdfs.
 
-// Below this alpha the GGX lobe is treated as an ideal mirror (as pbrt-v4
+// Below SMOOTH_ALPHA (src/render/layout.ts) the GGX lobe is treated as an ideal mirror (as pbrt-v4
 // does): its peak is then far narrower than a pixel's footprint, and the
 // mirror is exact instead of a badly conditioned huge-D/tiny-pdf pair.
-const float SMOOTH_ALPHA = 1e-3;
 
 float specularAlpha(Material m) { return m.roughness * m.roughness; }
 bool specularIsDelta(Material m) { return specularAlpha(m) < SMOOTH_ALPHA; }
@@ -43,25 +42,30 @@ struct BsdfSample {
   bool valid;
 };
 
-BsdfSample sampleMaterial(Material m, vec3 wo, vec3 u) {
-  BsdfSample s = BsdfSample(vec3(0.0), vec3(0.0), 0.0, false, false);
-  if (wo.z <= 0.0) return s;
+// Draws a direction from the lobe mixture (u.z picks the lobe, u.xy the
+// direction); `isDelta` tells that the ideal mirror was picked.
+vec3 sampleMaterialDirection(Material m, vec3 wo, vec3 u, out bool isDelta) {
   bool chooseSpecular = u.z >= m.roughness;
-  if (chooseSpecular && specularIsDelta(m)) {
-    // Ideal mirror: weight = (1 - r) color / (1 - r).
-    s.wi = vec3(-wo.xy, wo.z);
-    s.weight = m.color;
-    s.isDelta = true;
-    s.valid = true;
-    return s;
-  }
+  isDelta = chooseSpecular && specularIsDelta(m);
   // One polar disk point serves both lobes (one sin/cos pair per bounce):
   // projected up it is cosine-distributed, warped it is a visible normal.
   float r2 = u.x;
   float phi = 2.0 * PI * u.y;
   vec2 disk = sqrt(r2) * vec2(cos(phi), sin(phi));
-  vec3 h = sampleGgxVisibleNormal(wo, specularAlpha(m), disk);
-  s.wi = chooseSpecular ? reflect(-wo, h) : vec3(disk, sqrt(1.0 - r2));
+  vec3 h = isDelta ? vec3(0.0, 0.0, 1.0) : sampleGgxVisibleNormal(wo, specularAlpha(m), disk);
+  return chooseSpecular ? reflect(-wo, h) : vec3(disk, sqrt(1.0 - r2));
+}
+
+BsdfSample sampleMaterial(Material m, vec3 wo, vec3 u) {
+  BsdfSample s = BsdfSample(vec3(0.0), vec3(0.0), 0.0, false, false);
+  if (wo.z <= 0.0) return s;
+  s.wi = sampleMaterialDirection(m, wo, u, s.isDelta);
+  if (s.isDelta) {
+    // Ideal mirror: weight = (1 - r) color / (1 - r).
+    s.weight = m.color;
+    s.valid = true;
+    return s;
+  }
   vec3 f = evalMaterial(m, wo, s.wi, s.pdf);
   if (s.pdf <= 0.0) return s;
   s.weight = f / s.pdf;

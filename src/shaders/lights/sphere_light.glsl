@@ -41,6 +41,7 @@ vec3 sampleDirectLight(Hit hit, mat3 frame, vec3 wo, Material m, vec3 u) {
   float bsdfPdf;
   vec3 f = evalMaterial(m, wo, wi, bsdfPdf);
   if (bsdfPdf <= 0.0) return vec3(0.0);
+  bsdfPdf = guidedPdf(bsdfPdf, wiWorld);  // BSDF sampling is mixed with the caustic guides
 
   vec3 origin = spawnRayOrigin(hit, wiWorld);
   vec4 sphere = lightGeometry(light);
