@@ -5,6 +5,7 @@
  */
 import { PathTracer } from '../render/PathTracer';
 import type { DisplayOptions } from '../render/passes/display';
+import type { SamplerKind } from '../render/layout';
 import type { Scene } from '../scene/types';
 import { runKernel, type KernelRequest } from './kernels';
 
@@ -12,6 +13,8 @@ export interface LoadOptions {
   width: number;
   height: number;
   seed: number;
+  sampler?: SamplerKind;
+  russianRoulette?: boolean;
 }
 
 export interface HeadlessApi {

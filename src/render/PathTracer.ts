@@ -26,6 +26,11 @@ export interface PathTracerOptions {
    * low-discrepancy sequence: unbiased, converges faster) or 'independent' (white noise everywhere).
    */
   sampler?: SamplerKind;
+  /**
+   * Russian roulette after a few bounces (unbiased). Default false: on
+   * SwiftShader it saves no time and adds variance (see integrator.glsl).
+   */
+  russianRoulette?: boolean;
   /** Keep the canvas contents after compositing (needed to screenshot it). Default false. */
   preserveDrawingBuffer?: boolean;
 }
@@ -42,6 +47,7 @@ export class PathTracer {
   private scene: Scene;
   private seed: number;
   private readonly sampler: SamplerKind;
+  private readonly russianRoulette: boolean;
   private size: { width: number; height: number };
   private samples = 0;
   private resources: Resources | null = null;
@@ -53,6 +59,7 @@ export class PathTracer {
     this.scene = scene;
     this.seed = options.seed ?? 0;
     this.sampler = options.sampler ?? 'kronecker';
+    this.russianRoulette = options.russianRoulette ?? false;
     this.gl = createContext(this.canvas, options.preserveDrawingBuffer ?? false);
     this.canvas.addEventListener('webglcontextlost', this.onContextLost as EventListener);
     this.canvas.addEventListener('webglcontextrestored', this.onContextRestored as EventListener);
@@ -198,7 +205,7 @@ export class PathTracer {
   }
 
   private createResources(): Resources {
-    const trace = new TracePass(this.gl, this.sampler);
+    const trace = new TracePass(this.gl, this.sampler, this.russianRoulette);
     const display = new DisplayPass(this.gl);
     const sums = new PingPong(this.gl, this.size.width, this.size.height);
     trace.setScene(this.scene, this.size.width, this.size.height);

@@ -55,10 +55,19 @@ export const MAX_RADIANCE = 1e30;
 
 /**
  * Random-number dimensions (one rand4() each): the camera ray takes one, each
- * bounce two (light sample; BSDF sample, whose .w is spare).
+ * bounce three (light sample, whose .w picks a caustic guide; BSDF sample,
+ * whose .w picks the technique; Russian roulette).
  */
 export const RNG_CAMERA_DIMENSIONS = 1;
-export const RNG_BOUNCE_DIMENSIONS = 2;
+export const RNG_BOUNCE_DIMENSIONS = 3;
+
+/**
+ * Russian roulette (PathTracerOptions.russianRoulette, off by default): from
+ * this many scattering events on, a path whose throughput fell below the
+ * threshold survives with probability = its largest throughput component.
+ */
+export const ROULETTE_DEPTH = 3;
+export const ROULETTE_THRESHOLD = 0.95;
 
 /**
  * Generators of the R_d Kronecker sequence (M. Roberts, "The unreasonable
@@ -104,6 +113,8 @@ export function layoutDefines(): Record<string, string | number> {
     MAX_RADIANCE: MAX_RADIANCE.toExponential(),
     RNG_CAMERA_DIMENSIONS: `${RNG_CAMERA_DIMENSIONS}u`,
     RNG_BOUNCE_DIMENSIONS: `${RNG_BOUNCE_DIMENSIONS}u`,
+    ROULETTE_DEPTH,
+    ROULETTE_THRESHOLD: ROULETTE_THRESHOLD.toFixed(6),
     ...ldGeneratorDefines(),
     LOW_DISCREPANCY: 1,
     ...Object.fromEntries(TONEMAPS.map((name, i) => [`TONEMAP_${name.toUpperCase()}`, i])),

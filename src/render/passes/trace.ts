@@ -77,11 +77,16 @@ export class TracePass {
    */
   private readonly sceneTexture: WebGLTexture;
 
-  constructor(private readonly gl: WebGL2RenderingContext, sampler: SamplerKind = 'kronecker') {
+  constructor(
+    private readonly gl: WebGL2RenderingContext,
+    sampler: SamplerKind = 'kronecker',
+    russianRoulette = false,
+  ) {
     const variant = (guiding: boolean) => {
       const program = new Program(gl, VERTEX_CHUNKS, TRACE_CHUNKS, {
         ...layoutDefines(),
         LOW_DISCREPANCY: sampler === 'kronecker' ? 1 : 0,
+        RUSSIAN_ROULETTE: russianRoulette ? 1 : 0,
         CAUSTIC_GUIDING: guiding ? 1 : 0,
       });
       gl.uniformBlockBinding(program.handle, gl.getUniformBlockIndex(program.handle, 'SceneBlock'), SCENE_BLOCK_BINDING);
