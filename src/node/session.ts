@@ -59,6 +59,8 @@ export class WebPageNotBuiltError extends Error {
 
 export interface SessionOptions {
   chromiumPath?: string;
+  /** The built page to drive (default: dist/web); benchmarks point it at another build to compare. */
+  webRoot?: string;
 }
 
 export interface RenderSession {
@@ -101,7 +103,7 @@ export async function launchChromium(options: SessionOptions = {}): Promise<Brow
 const SAMPLES_PER_DRAW_BUDGET = 500_000;
 
 export async function openRenderSession(options: SessionOptions = {}): Promise<RenderSession> {
-  const root = webRoot();
+  const root = options.webRoot ?? webRoot();
   const executable = chromiumPath(options);
   const server: StaticServer = await serveDirectory(root);
   let browser: Browser | undefined;
