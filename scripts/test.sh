@@ -14,5 +14,6 @@ if [ ! -d node_modules ] || [ package-lock.json -nt node_modules/.package-lock.j
 fi
 
 npm run typecheck
+bash scripts/audit.sh
 npm run build
 npx vitest run "$@"
