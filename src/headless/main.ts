@@ -8,6 +8,10 @@ import type { DisplayOptions } from '../render/passes/display';
 import type { SamplerKind } from '../render/layout';
 import type { Scene } from '../scene/types';
 import { runKernel, type KernelRequest } from './kernels';
+import { createContext } from '../render/gl/context';
+import { Program, ShaderCompileError } from '../render/gl/program';
+import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/passes/trace';
+import { layoutDefines } from '../render/layout';
 
 export interface LoadOptions {
   width: number;
@@ -31,6 +35,8 @@ export interface HeadlessApi {
   restoreContext(): void;
   contextLost(): boolean;
   runKernel(request: KernelRequest): string;
+  /** Compiles `source` as a fragment-shader chunk named `name` after the common chunks; the error log, or null. */
+  compileLog(name: string, source: string): string | null;
 }
 
 let tracer: PathTracer | null = null;
@@ -93,6 +99,16 @@ const api: HeadlessApi = {
   runKernel(request) {
     const data = runKernel(request);
     return toBase64(new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
+  },
+  compileLog(name, source) {
+    const gl = createContext(new OffscreenCanvas(1, 1), false);
+    try {
+      new Program(gl, VERTEX_CHUNKS, [...SCENE_CHUNKS.slice(0, 3), { name, source }], layoutDefines()).dispose();
+      return null;
+    } catch (error) {
+      if (error instanceof ShaderCompileError) return error.message;
+      throw error;
+    }
   },
 };
 

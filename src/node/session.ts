@@ -79,6 +79,8 @@ export interface RenderSession {
   readonly page: Page;
   probe(): Promise<{ webgl2: boolean; floatTargets: boolean; renderer: string }>;
   runKernel(request: KernelRequest): Promise<Float32Array>;
+  /** The compile log of a fragment-shader chunk (after the common chunks), or null if it compiles. */
+  compileLog(name: string, source: string): Promise<string | null>;
 }
 
 /** The built page directory: dist/web next to the bundled CLI, or from the sources. */
@@ -163,6 +165,7 @@ function createSession(page: Page, browser: Browser, server: StaticServer, pageE
       const toneMap = options.tonemap as DisplayOptions['toneMap'];
       return new Uint8Array(Buffer.from(await call('readDisplayed', { exposure: options.exposure, toneMap }), 'base64'));
     },
+    compileLog: (name, source) => call('compileLog', name, source),
     async runKernel(request) {
       return toFloat32(await call('runKernel', request));
     },
