@@ -32,6 +32,7 @@ export const BLOCK = {
  * next direction towards a light's image in a mirror; how much wider than
  * the estimated image the cone is; fixed-point iterations for the mirror point.
  */
+/** caustic_guide.glsl holds exactly two named cones: change both together. */
 export const MAX_GUIDES = 2;
 export const GUIDE_PROBABILITY = 0.1;
 export const GUIDE_MARGIN = 2.0;

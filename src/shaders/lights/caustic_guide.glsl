@@ -16,11 +16,13 @@
 
 #if CAUSTIC_GUIDING
 
-// The guides of the current vertex (globals: SwiftShader copies arrays
-// passed by value, which cost more than the guiding itself).
-vec4 guideCones[MAX_GUIDES];  // xyz = unit axis, w = 1 - cos(half angle)
-int guidesHere;               // cones in use
-float guideProbability;       // of drawing from the cones at this vertex
+// The guides of the current vertex: globals, and two named cones rather
+// than an array (MAX_GUIDES is 2): SwiftShader copies arrays passed by value
+// and indexes local arrays slowly, which cost more than the guiding itself.
+vec4 guideCone0;         // xyz = unit axis, w = 1 - cos(half angle)
+vec4 guideCone1;
+int guidesHere;          // cones in use (0, 1 or 2)
+float guideProbability;  // of drawing from the cones at this vertex
 
 int guideCount() { return int(uCounts.w); }
 
@@ -61,18 +63,19 @@ void buildGuides(vec3 x, vec3 n, Material m) {
   // Rough (diffuse-like) vertices are guided most: a glossy lobe already
   // concentrates its samples and would lose more than it gains.
   guideProbability = guidesHere > 0 ? GUIDE_PROBABILITY * m.roughness : 0.0;
-  // Loops bounded by the (uniform) guide count cost nothing without guides.
-  for (int i = 0; i < guidesHere; i++) guideCones[i] = guideCone(x, n, i);
+  guideCone0 = guideCone(x, n, 0);
+  guideCone1 = guidesHere > 1 ? guideCone(x, n, 1) : guideCone0;
 }
 
 // Density (solid angle) of drawing the world direction w from the cones.
+float conePdf(vec4 cone, vec3 w) {
+  return 1.0 - dot(w, cone.xyz) <= cone.w ? uniformConePdf(cone.w) : 0.0;
+}
+
 float guidePdf(vec3 w) {
-  float pdf = 0.0;
-  for (int i = 0; i < guidesHere; i++) {
-    vec4 cone = guideCones[i];
-    pdf += 1.0 - dot(w, cone.xyz) <= cone.w ? uniformConePdf(cone.w) : 0.0;
-  }
-  return guidesHere > 0 ? pdf / float(guidesHere) : 0.0;
+  if (guidesHere == 0) return 0.0;
+  float pdf = conePdf(guideCone0, w) + (guidesHere > 1 ? conePdf(guideCone1, w) : 0.0);
+  return pdf / float(guidesHere);
 }
 
 // The mixture pdf of the "BSDF sampling" technique, given the BSDF's own.
@@ -89,10 +92,8 @@ BsdfSample sampleGuided(Material m, mat3 frame, vec3 wo, vec4 u, float choice) {
   vec3 wiBsdf = sampleMaterialDirection(m, wo, u.xyz, s.isDelta);
   vec3 world = frame * wiBsdf;
   if (guided) {
-    int pick = min(int(choice * float(guidesHere)), guidesHere - 1);
-    for (int i = 0; i < guidesHere; i++) {
-      if (i == pick) world = basisAround(guideCones[i].xyz) * sampleUniformCone(u.xy, guideCones[i].w);
-    }
+    vec4 cone = choice * float(guidesHere) >= 1.0 ? guideCone1 : guideCone0;
+    world = basisAround(cone.xyz) * sampleUniformCone(u.xy, cone.w);
     s.isDelta = false;
   }
   s.wi = guided ? world * frame : wiBsdf;
