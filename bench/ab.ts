@@ -10,7 +10,7 @@ import { openRenderSession, type LoadOptions } from '../src/node/session';
 import type { SamplerKind } from '../src/render/layout';
 import { parseSceneText } from '../src/scene/schema';
 import { decodePfm } from '../src/cli/pfm';
-import { gpuProcessCpuSeconds, measureThroughput, projectRoot } from './common';
+import { projectRoot, renderFor } from './common';
 import { downsample } from './run';
 
 function option(argv: string[], name: string, fallback: string): string {
@@ -79,21 +79,9 @@ async function measureThroughputLoaded(
   seconds: number,
 ): Promise<{ wall: number; cpu: number }> {
   await session.render(1);
-  let spp = 0;
-  const cpuStart = gpuProcessCpuSeconds() ?? NaN;
-  const start = performance.now();
-  let elapsed = 0;
-  let chunk = 1;
-  while (elapsed < seconds) {
-    await session.render(chunk);
-    spp += chunk;
-    elapsed = (performance.now() - start) / 1000;
-    chunk = Math.max(1, Math.round((spp / elapsed) * 0.25));
-  }
-  const cpu = (gpuProcessCpuSeconds() ?? NaN) - cpuStart;
-  return { wall: (spp * pixels) / elapsed / 1e6, cpu: (spp * pixels) / cpu / 1e6 };
+  const run = await renderFor(session, seconds, 0.25);
+  return { wall: (run.spp * pixels) / run.seconds / 1e6, cpu: (run.spp * pixels) / (run.cpuSeconds ?? NaN) / 1e6 };
 }
-void measureThroughput;
 
 main(process.argv.slice(2)).catch((error) => {
   console.error(error);

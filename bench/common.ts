@@ -82,6 +82,31 @@ export async function measureThroughput(
   await session.render(1);
   const startupSeconds = (performance.now() - startLoad) / 1000;
   const pixels = size.width * size.height;
+  // Chunks of ~1 s: the loop overhead is negligible and each draw carries
+  // as many samples as the session allows (as in a long CLI render).
+  const { spp, seconds: elapsed, cpuSeconds } = await renderFor(session, seconds, 1);
+  return {
+    width: size.width,
+    height: size.height,
+    maxBounces: scene.render.maxBounces,
+    startupSeconds,
+    spp,
+    seconds: elapsed,
+    megaPathsPerSecond: (spp * pixels) / elapsed / 1e6,
+    megaPathsPerCpuSecond: cpuSeconds === undefined ? undefined : (spp * pixels) / cpuSeconds / 1e6,
+  };
+}
+
+/**
+ * Renders the loaded scene for about `seconds`, in calls of about
+ * `chunkSeconds` each (sized from the rate so far); returns the spp drawn,
+ * the wall time and the GPU process's CPU time (when it can be read).
+ */
+export async function renderFor(
+  session: RenderSession,
+  seconds: number,
+  chunkSeconds: number,
+): Promise<{ spp: number; seconds: number; cpuSeconds?: number }> {
   let chunk = 1;
   let spp = 0;
   const cpuStart = gpuProcessCpuSeconds();
@@ -92,20 +117,10 @@ export async function measureThroughput(
     spp += chunk;
     elapsed = (performance.now() - start) / 1000;
     const rate = spp / Math.max(elapsed, 1e-3);
-    // Chunks of ~1 s: the loop overhead is negligible and each draw carries
-    // as many samples as the session allows (as in a long CLI render).
-    chunk = Math.max(1, Math.min(Math.round(rate), Math.ceil(rate * (seconds - elapsed))));
+    chunk = Math.max(1, Math.min(Math.round(rate * chunkSeconds), Math.ceil(rate * (seconds - elapsed))));
   }
-  return {
-    width: size.width,
-    height: size.height,
-    maxBounces: scene.render.maxBounces,
-    startupSeconds,
-    spp,
-    seconds: elapsed,
-    megaPathsPerSecond: (spp * pixels) / elapsed / 1e6,
-    megaPathsPerCpuSecond: cpuStart === undefined ? undefined : (spp * pixels) / (gpuProcessCpuSeconds()! - cpuStart) / 1e6,
-  };
+  const cpuEnd = gpuProcessCpuSeconds();
+  return { spp, seconds: elapsed, cpuSeconds: cpuStart === undefined || cpuEnd === undefined ? undefined : cpuEnd - cpuStart };
 }
 
 export function writeResult(prefix: string, data: unknown): string {

@@ -17,7 +17,7 @@ import { layoutDefines } from '../src/render/layout';
 import { buildShader } from '../src/render/gl/shaderSource';
 import { parseSceneText } from '../src/scene/schema';
 import { decodePfm } from '../src/cli/pfm';
-import { gpuProcessCpuSeconds, projectRoot } from './common';
+import { projectRoot, renderFor } from './common';
 import { downsample } from './run';
 
 const CHUNKS = [
@@ -124,20 +124,9 @@ async function main(argv: string[]): Promise<void> {
         await session.load(scene, { width: w, height: h, seed: 1 + r } as LoadOptions);
         await session.render(1);
         compile.get(v.name)!.push((performance.now() - t0) / 1000);
-        let done = 0;
-        let chunk = 1;
-        const cpuStart = gpuProcessCpuSeconds() ?? NaN;
-        const start = performance.now();
-        let elapsed = 0;
-        while (elapsed < seconds) {
-          await session.render(chunk);
-          done += chunk;
-          elapsed = (performance.now() - start) / 1000;
-          chunk = Math.max(1, Math.round((done / elapsed) * 0.5));
-        }
-        const used = (gpuProcessCpuSeconds() ?? NaN) - cpuStart;
-        cpu.get(v.name)!.push((done * w * h) / used / 1e6);
-        wall.get(v.name)!.push((done * w * h) / elapsed / 1e6);
+        const run = await renderFor(session, seconds, 0.5);
+        cpu.get(v.name)!.push((run.spp * w * h) / (run.cpuSeconds ?? NaN) / 1e6);
+        wall.get(v.name)!.push((run.spp * w * h) / run.seconds / 1e6);
       }
     }
     const errors = new Map<string, number>();
