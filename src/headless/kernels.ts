@@ -11,7 +11,7 @@ import { BLOCK, layoutDefines } from '../render/layout';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/passes/trace';
 import { createContext } from '../render/gl/context';
 
-export const KERNELS = ['sampleCone', 'sampleMaterial', 'pdfMaterial', 'sampleRng'] as const;
+export const KERNELS = ['sampleCone', 'sampleMaterial', 'pdfMaterial'] as const;
 export type KernelName = (typeof KERNELS)[number];
 
 export interface KernelRequest {

@@ -106,11 +106,11 @@ const SAMPLES_PER_DRAW_BUDGET = 500_000;
 
 export async function openRenderSession(options: SessionOptions = {}): Promise<RenderSession> {
   const root = options.webRoot ?? webRoot();
-  const executable = chromiumPath(options);
+  chromiumPath(options); // fail before starting the server when Chromium is missing
   const server: StaticServer = await serveDirectory(root);
   let browser: Browser | undefined;
   try {
-    browser = await chromium.launch({ executablePath: executable, ...LAUNCH_OPTIONS });
+    browser = await launchChromium(options);
     const page = await browser.newPage();
     const pageErrors: string[] = [];
     page.on('pageerror', (error) => pageErrors.push(error.message));

@@ -26,12 +26,10 @@ void main() {
   } else if (uKernel == KERNEL_SAMPLEMATERIAL) {
     BsdfSample s = sampleMaterial(material, uWo, rand4().xyz);
     outValue = s.valid ? vec4(s.wi, s.isDelta ? -1.0 : s.pdf) : vec4(0.0);
-  } else if (uKernel == KERNEL_PDFMATERIAL) {
+  } else {
     vec3 wi = gridDirection(vec2(pixel));
     float pdf;
     evalMaterial(material, uWo, wi, pdf);
     outValue = vec4(wi, pdf);
-  } else {
-    outValue = rand4();
   }
 }
