@@ -28,6 +28,7 @@ const CHUNKS = [
   'scene/intersect.glsl',
   'bsdf/ggx.glsl',
   'bsdf/material.glsl',
+  'lights/caustic_guide.glsl',
   'lights/sphere_light.glsl',
   'camera.glsl',
   'integrator.glsl',
@@ -54,10 +55,39 @@ const PATCHES: Record<string, [string | RegExp, string][]> = {
   // Scene fetch cost: sphere geometry from arithmetic instead of the scene data (wrong image).
   fakeFetch: [[/vec4 sphereGeometry\(int i\) \{[^\n]*\}/,
     'vec4 sphereGeometry(int i) { float f = float(i); return vec4(f - 2.0, 0.5 + 0.1 * f, 0.3 * f, 0.5); }']],
+  // Seed scene only: the loop bounds as compile-time constants (5 spheres, 1 light).
+  constCounts: [
+    ['int sphereCount() { return int(uCounts.x); }', 'int sphereCount() { return 5; }'],
+    ['int lightCount() { return int(uCounts.y); }', 'int lightCount() { return 1; }'],
+  ],
+  // Sphere and light geometry from the uniform block instead of the texture.
+  blockReads: [
+    [/vec4 sphereGeometry\(int i\) \{[^\n]*\}/, 'vec4 sphereGeometry(int i) { return uSpheres[i * SPHERE_VEC4S + SPHERE_GEOMETRY]; }'],
+    [/vec4 lightGeometry\(int i\) \{[^\n]*\}/, 'vec4 lightGeometry(int i) { return uLights[i * LIGHT_VEC4S + LIGHT_GEOMETRY]; }'],
+  ],
+  // Seed scene only: loops over 5 spheres and 1 light unrolled, constant-index uniform-block reads.
+  unrolled: unrolledLoops(5, 1),
   // The camera: a fixed direction per pixel.
   noCamera: [[/void generateCameraRay\(vec2 pixel, out vec3 origin, out vec3 direction\) \{/,
     'void generateCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) { origin = uCameraPosition; direction = normalize(vec3(pixel / uResolution - 0.5, -1.0)); return; }\nvoid unusedCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) {']],
 };
+
+
+/** Edits that unroll the sphere and light loops for fixed counts (an experiment). */
+function unrolledLoops(spheres: number, lights: number): [string | RegExp, string][] {
+  const closest = (kind: string, array: string, stride: string, n: number) =>
+    Array.from({ length: n }, (_, i) =>
+      `{ float t = sphereHitT(origin, direction, ${array}[${i} * ${stride}]); bool closer = t > 0.0 && t < tMin; tMin = closer ? t : tMin; ${kind} = closer ? ${i} : ${kind}; }`).join('\n');
+  const blocked = (array: string, stride: string, n: number, skip: boolean) =>
+    Array.from({ length: n }, (_, i) =>
+      `{ float t = sphereHitT(origin, direction, ${array}[${i} * ${stride}]); blocked = blocked || (${skip ? `${i} != skipLight && ` : ''}t > 0.0 && t < tMax); }`).join('\n');
+  return [
+    [/for \(int i = 0; i < sphereCount\(\); i\+\+\) \{\n    float t = sphereHitT\(origin, direction, sphereGeometry\(i\)\);\n    bool closer[^}]*\}/, closest('sphere', 'uSpheres', 'SPHERE_VEC4S', spheres)],
+    [/for \(int i = 0; i < lightCount\(\); i\+\+\) \{\n    float t = sphereHitT\(origin, direction, lightGeometry\(i\)\);\n    bool closer[^}]*\}/, closest('light', 'uLights', 'LIGHT_VEC4S', lights)],
+    [/for \(int i = 0; i < sphereCount\(\); i\+\+\) \{\n    float t = sphereHitT\(origin, direction, sphereGeometry\(i\)\);\n    blocked[^}]*\}/, blocked('uSpheres', 'SPHERE_VEC4S', spheres, false)],
+    [/for \(int i = 0; i < lightCount\(\); i\+\+\) \{\n    float t = sphereHitT\(origin, direction, lightGeometry\(i\)\);\n    blocked[^}]*\}/, blocked('uLights', 'LIGHT_VEC4S', lights, true)],
+  ];
+}
 
 function option(argv: string[], name: string, fallback: string): string {
   const i = argv.indexOf(`--${name}`);
@@ -68,10 +98,11 @@ const median = (v: number[]) => [...v].sort((a, b) => a - b)[Math.floor(v.length
 const mean = (v: number[]) => v.reduce((a, b) => a + b, 0) / v.length;
 
 function variantSource(spec: string, root: URL): string {
+  if (spec.endsWith('.frag')) return readFileSync(spec, 'utf8'); // a whole trace shader, e.g. a hand-edited dump
   const [dir, ...patches] = spec.split('+');
   const base = new URL(dir.endsWith('/') ? dir : `${dir}/`, root);
   const chunks = CHUNKS.map((name) => ({ name, source: readFileSync(new URL(name, base), 'utf8') }));
-  let text = buildShader(chunks, { ...layoutDefines(), LOW_DISCREPANCY: 1 }).text;
+  let text = buildShader(chunks, { ...layoutDefines(), LOW_DISCREPANCY: 1, RUSSIAN_ROULETTE: 0, CAUSTIC_GUIDING: 1 }).text;
   for (const p of patches) {
     const edits = PATCHES[p];
     if (!edits) throw new Error(`unknown patch ${p}`);
@@ -161,6 +192,7 @@ async function main(argv: string[]): Promise<void> {
 }
 
 void fileURLToPath;
+if (process.env.DUMP_VARIANT) { console.log(variantSource(process.env.DUMP_VARIANT, projectRoot())); process.exit(0); }
 main(process.argv.slice(2)).catch((error) => {
   console.error(error);
   process.exit(1);

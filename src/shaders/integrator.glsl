@@ -1,45 +1,41 @@
 // Unidirectional path tracing with next-event estimation and multiple
 // importance sampling (pbrt-v4's PathIntegrator, reduced to this scene model).
 //
+// Shaped for SwiftShader, which runs the lanes of a pixel quad in lock step
+// and executes both sides of every branch under lane masks: only a loop's
+// back edge really skips work (when no lane continues). So the loop body is
+// one scattering event that ends by finding the next vertex, adding what
+// it emits and deciding there whether the path goes on, so that the back
+// edge is taken only when some lane has a surface to scatter from. A path that escapes to the sky costs one intersection, not
+// one more (masked) pass through the whole body (measured: bench/shader-ab.ts).
+//
 // Russian roulette is a switch (RUSSIAN_ROULETTE, PathTracerOptions), off by
-// default: SwiftShader runs the four pixels of a quad in lock step and a
-// loop iterates until its last lane is done, so terminating a path early
-// rarely saves time there, while the 1/q reweighting adds variance
-// (measured: relMSE at equal spp 12-28% lower without it, same path rate).
-// On a GPU whose warps retire early it can pay off.
+// default: a loop iterates until its last lane is done, so terminating a path
+// early rarely saves time on SwiftShader, while the 1/q reweighting adds
+// variance (measured: relMSE at equal spp 12-28% lower without it, same
+// path rate). On a GPU whose warps retire early it can pay off.
 uniform int uMaxBounces;
 
+bool scatters(Hit hit) { return hit.kind == HIT_SPHERE || hit.kind == HIT_GROUND; }
+
+// Radiance leaving the hit towards the ray's origin that only BSDF sampling
+// finds: the sky for an escaped ray; a light's emission (outward side only),
+// MIS-weighted against light sampling at the previous vertex (unless that
+// vertex scattered through a Dirac delta); nothing for other surfaces.
+vec3 emitted(Hit hit, vec3 direction, vec3 previousPosition, bool previousDelta, float previousPdf) {
+  float weight = previousDelta ? 1.0 : powerHeuristic(previousPdf, lightPdf(previousPosition, hit.index));
+  vec3 light = dot(direction, hit.normal) < 0.0 ? lightRadiance(hit.index) * weight : vec3(0.0);
+  return hit.kind == HIT_NONE ? uEnvironment.rgb : hit.kind == HIT_LIGHT ? light : vec3(0.0);
+}
+
 vec3 traceRadiance(vec3 origin, vec3 direction) {
-  vec3 radiance = vec3(0.0);
+  Hit hit = intersectScene(origin, direction);
+  vec3 radiance = emitted(hit, direction, origin, true, 0.0);
   vec3 throughput = vec3(1.0);
-  // The previous scattering event, for MIS on emitters found by BSDF sampling.
-  bool previousDelta = true;
-  float previousPdf = 0.0;
-  vec3 previousPosition = origin;
 
   for (int depth = 0; ; depth++) {
-    Hit hit = intersectScene(origin, direction);
-
-    // Escaped: the environment's constant radiance.
-    if (hit.kind == HIT_NONE) {
-      radiance += throughput * uEnvironment.rgb;
-      break;
-    }
-    // Emitter: add its radiance (outward side only), MIS-weighted against
-    // light sampling at the previous vertex; lights reflect nothing.
-    if (hit.kind == HIT_LIGHT) {
-      if (dot(direction, hit.normal) < 0.0) {
-        float weight = previousDelta ? 1.0
-          : powerHeuristic(previousPdf, lightPdf(previousPosition, hit.index));
-        radiance += throughput * lightRadiance(hit.index) * weight;
-      }
-      break;
-    }
-    // Terminate path if maximum depth reached.
-    if (depth >= uMaxBounces) break;
-
-    Material material = groundMaterial();
-    if (hit.kind == HIT_SPHERE) material = sphereMaterial(hit.index);
+    if (depth >= uMaxBounces || !scatters(hit)) break;
+    Material material = surfaceMaterial(hit.kind == HIT_SPHERE, hit.index);
     vec3 normal = dot(direction, hit.normal) < 0.0 ? hit.normal : -hit.normal;
     mat3 frame = basisAround(normal);
     vec3 wo = -direction * frame;
@@ -49,29 +45,21 @@ vec3 traceRadiance(vec3 origin, vec3 direction) {
     vec4 uLight = rand4();
     vec4 uBsdf = rand4();
 #if LOW_DISCREPANCY
-    if (depth == 0) {
-      uLight.xy = ldLight();
-      uBsdf.xy = ldBsdf();
-    }
+    uLight.xy = depth == 0 ? ldLight() : uLight.xy;
+    uBsdf.xy = depth == 0 ? ldBsdf() : uBsdf.xy;
 #endif
 
     // Caustic guides at this vertex (see lights/caustic_guide.glsl).
     buildGuides(hit.position, normal, material);
 
-    // Sample illumination from lights to find path contribution.
-    if (hasSmoothLobe(material)) {
-      radiance += throughput * sampleDirectLight(hit, frame, wo, material, uLight.xyz);
-    }
+    // Light arriving directly from a light source (next-event estimation).
+    vec3 direct = sampleDirectLight(hit, frame, wo, material, uLight.xyz);
+    radiance += throughput * (hasSmoothLobe(material) ? direct : vec3(0.0));
 
-    // Sample BSDF (mixed with the caustic guides) to get new path direction.
+    // Sample the BSDF (mixed with the caustic guides) for the next direction.
     BsdfSample bs = sampleGuided(material, frame, wo, uBsdf, uLight.w);
     if (!bs.valid) break;
     throughput *= bs.weight;
-    previousDelta = bs.isDelta;
-    previousPdf = bs.pdf;
-    previousPosition = hit.position;
-    direction = frame * bs.wi;
-    origin = spawnRayOrigin(hit, direction);
 
 #if RUSSIAN_ROULETTE
     // Possibly terminate the path (unbiased: survivors are reweighted by
@@ -85,6 +73,14 @@ vec3 traceRadiance(vec3 origin, vec3 direction) {
     }
 #endif
 
+    // The next vertex, and what it emits towards this one.
+    vec3 position = hit.position;
+    direction = frame * bs.wi;
+    hit = intersectScene(spawnRayOrigin(hit, direction), direction);
+    radiance += throughput * emitted(hit, direction, position, bs.isDelta, bs.pdf);
+    // Decided here, not at the top: a lane that leaves at the back edge
+    // spares the quad a whole masked pass through the body.
+    if (depth + 1 >= uMaxBounces || !scatters(hit)) break;
   }
   return radiance;
 }

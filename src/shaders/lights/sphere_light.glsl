@@ -45,9 +45,9 @@ vec3 sampleDirectLight(Hit hit, mat3 frame, vec3 wo, Material m, vec3 u) {
 
   vec3 origin = spawnRayOrigin(hit, wiWorld);
   vec4 sphere = lightGeometry(light);
-  float tLight = intersectSphere(origin, wiWorld, sphere, INFINITY);
+  float tLight = sphereHitT(origin, wiWorld, sphere);
   // A direction on the cone's rim can miss by rounding; it still ends at the light.
-  if (tLight == INFINITY) tLight = dot(sphere.xyz - origin, wiWorld);
+  tLight = tLight < INFINITY ? tLight : dot(sphere.xyz - origin, wiWorld);
   if (occluded(origin, wiWorld, tLight, light)) return vec3(0.0);
 
   float pdf = lightSelectionPdf() * uniformConePdf(cone.oneMinusCosMax);

@@ -12,12 +12,16 @@ struct Hit {
   float scale;    // size of the hit object, for the self-intersection offset
 };
 
-// Nearest t > 0 where the ray (unit direction) meets the sphere, or a value
-// <= 0 (no hit). Branch-free: SwiftShader runs both sides of every branch.
-// Computes the discriminant from the ray's closest approach to the centre
-// (Haines et al., Ray Tracing Gems ch. 7) to stay accurate for large radii
-// and distant spheres; the near root without cancellation: q = -b - sign(b) h
-// and c / q.
+// Nearest t > 0 where the ray (unit direction) meets the sphere, or
+// INFINITY. Computes the discriminant from the ray's closest approach to the
+// centre (Haines et al., Ray Tracing Gems ch. 7) to stay accurate for large
+// radii and distant spheres; the near root without cancellation:
+// q = -b - sign(b) h and c / q.
+//
+// Branch-free, as is all code on the per-bounce path: SwiftShader runs both
+// sides of every branch under lane masks, and its code is dominated by the
+// masked stores that merge values at the end of an if; a select costs far
+// less (measured with bench/shader-ab.ts).
 float sphereHitT(vec3 origin, vec3 direction, vec4 sphere) {
   vec3 oc = origin - sphere.xyz;
   float b = dot(oc, direction);
@@ -31,73 +35,71 @@ float sphereHitT(vec3 origin, vec3 direction, vec4 sphere) {
   float tNear = min(q, t1);
   float tFar = max(q, t1);
   float t = tNear > 0.0 ? tNear : tFar;
-  return h >= 0.0 ? t : -1.0;
+  t = t > 0.0 ? t : INFINITY;
+  return h >= 0.0 ? t : INFINITY;
 }
 
-// Nearest t in (0, tMax) where the ray (unit direction) meets the sphere, or INFINITY.
-float intersectSphere(vec3 origin, vec3 direction, vec4 sphere, float tMax) {
-  float t = sphereHitT(origin, direction, sphere);
-  return (t > 0.0 && t < tMax) ? t : INFINITY;
-}
-
-float intersectGround(vec3 origin, vec3 direction, float tMax) {
-  if (!groundEnabled() || direction.y == 0.0) return INFINITY;
+// Nearest t > 0 where the ray meets the ground plane, or INFINITY (also for
+// rays parallel to it: their t is NaN or infinite).
+float groundHitT(vec3 origin, vec3 direction) {
   float t = (groundHeight() - origin.y) / direction.y;
-  return (t > 0.0 && t < tMax) ? t : INFINITY;
+  t = t > 0.0 ? t : INFINITY;
+  t = t < INFINITY ? t : INFINITY;
+  return groundEnabled() ? t : INFINITY;
 }
 
 Hit intersectScene(vec3 origin, vec3 direction) {
   // The loops keep only the distance and the object's index; the rest of
   // the hit is derived once afterwards.
-  float tMin = INFINITY;
-  int sphere = -1;
+  float tSphere = INFINITY;
+  int sphere = 0;
   for (int i = 0; i < sphereCount(); i++) {
     float t = sphereHitT(origin, direction, sphereGeometry(i));
-    bool closer = t > 0.0 && t < tMin;
-    tMin = closer ? t : tMin;
-    sphere = closer ? i : sphere;
+    sphere = t < tSphere ? i : sphere;
+    tSphere = min(t, tSphere);
   }
-  int light = -1;
+  float tLight = INFINITY;
+  int light = 0;
   for (int i = 0; i < lightCount(); i++) {
     float t = sphereHitT(origin, direction, lightGeometry(i));
-    bool closer = t > 0.0 && t < tMin;
-    tMin = closer ? t : tMin;
-    light = closer ? i : light;
+    light = t < tLight ? i : light;
+    tLight = min(t, tLight);
   }
-  float tGround = intersectGround(origin, direction, tMin);
-  Hit hit;
-  hit.t = min(tMin, tGround);
-  hit.kind = tGround < tMin ? HIT_GROUND : light >= 0 ? HIT_LIGHT : sphere >= 0 ? HIT_SPHERE : HIT_NONE;
-  hit.index = light >= 0 ? light : sphere;
+  float tGround = groundHitT(origin, direction);
 
-  if (hit.kind == HIT_GROUND) {
-    hit.position = origin + hit.t * direction;
-    hit.position.y = groundHeight();  // exactly on the plane
-    hit.normal = vec3(0.0, 1.0, 0.0);
-    hit.scale = abs(groundHeight());
-  } else if (hit.kind != HIT_NONE) {
-    vec4 geometry = hit.kind == HIT_SPHERE ? sphereGeometry(hit.index) : lightGeometry(hit.index);
-    vec3 p = origin + hit.t * direction;
-    hit.normal = normalize(p - geometry.xyz);
-    hit.position = geometry.xyz + geometry.w * hit.normal;  // re-project onto the surface
-    hit.scale = geometry.w;
-  }
+  bool isLight = tLight < tSphere;
+  float tObject = min(tSphere, tLight);
+  bool isGround = tGround < tObject;
+  Hit hit;
+  hit.t = min(tObject, tGround);
+  hit.kind = hit.t == INFINITY ? HIT_NONE : isGround ? HIT_GROUND : isLight ? HIT_LIGHT : HIT_SPHERE;
+  hit.index = isLight ? light : sphere;
+
+  // Both surfaces are derived and the right one selected (see sphereHitT).
+  vec4 geometry = sceneData(isLight ? BLOCK_LIGHTS + light * LIGHT_VEC4S + LIGHT_GEOMETRY
+                                    : BLOCK_SPHERES + sphere * SPHERE_VEC4S + SPHERE_GEOMETRY);
+  vec3 p = origin + hit.t * direction;
+  vec3 sphereNormal = normalize(p - geometry.xyz);
+  vec3 spherePosition = geometry.xyz + geometry.w * sphereNormal;  // re-projected onto the surface
+  vec3 groundPosition = vec3(p.x, groundHeight(), p.z);            // exactly on the plane
+  hit.normal = isGround ? vec3(0.0, 1.0, 0.0) : sphereNormal;
+  hit.position = isGround ? groundPosition : spherePosition;
+  hit.scale = isGround ? abs(groundHeight()) : geometry.w;
   return hit;
 }
 
 // True when something blocks the segment from origin to origin + tMax * direction.
 // `skipLight` is the light the segment ends on.
 bool occluded(vec3 origin, vec3 direction, float tMax, int skipLight) {
-  bool blocked = false;
+  float tBlock = groundHitT(origin, direction);
   for (int i = 0; i < sphereCount(); i++) {
-    float t = sphereHitT(origin, direction, sphereGeometry(i));
-    blocked = blocked || (t > 0.0 && t < tMax);
+    tBlock = min(tBlock, sphereHitT(origin, direction, sphereGeometry(i)));
   }
   for (int i = 0; i < lightCount(); i++) {
     float t = sphereHitT(origin, direction, lightGeometry(i));
-    blocked = blocked || (i != skipLight && t > 0.0 && t < tMax);
+    tBlock = min(tBlock, i == skipLight ? INFINITY : t);
   }
-  return blocked || intersectGround(origin, direction, tMax) < tMax;
+  return tBlock < tMax;
 }
 
 // Origin for a ray leaving `hit` into the side of `side` (a direction).

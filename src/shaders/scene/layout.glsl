@@ -36,3 +36,9 @@ Material groundMaterial() {
   vec4 m = uGround[GROUND_MATERIAL];
   return Material(m.rgb, m.a);
 }
+// The material of a sphere or, when `isSphere` is false, of the ground
+// (selected as vectors: GLSL ES has no ?: on structures).
+Material surfaceMaterial(bool isSphere, int sphere) {
+  vec4 m = isSphere ? sceneData(BLOCK_SPHERES + sphere * SPHERE_VEC4S + SPHERE_MATERIAL) : uGround[GROUND_MATERIAL];
+  return Material(m.rgb, m.a);
+}
