@@ -102,7 +102,7 @@ function variantSource(spec: string, root: URL): string {
   const [dir, ...patches] = spec.split('+');
   const base = new URL(dir.endsWith('/') ? dir : `${dir}/`, root);
   const chunks = CHUNKS.map((name) => ({ name, source: readFileSync(new URL(name, base), 'utf8') }));
-  let text = buildShader(chunks, { ...layoutDefines(), LOW_DISCREPANCY: 1, RUSSIAN_ROULETTE: 0, CAUSTIC_GUIDING: 1 }).text;
+  let text = buildShader(chunks, { ...layoutDefines(), LOW_DISCREPANCY: 1, RUSSIAN_ROULETTE: 0, CAUSTIC_GUIDES: 1, CAUSTIC_GUIDING: 1, GUIDE_ITERATIONS: 1 }).text;
   for (const p of patches) {
     const edits = PATCHES[p];
     if (!edits) throw new Error(`unknown patch ${p}`);

@@ -30,13 +30,12 @@ export const BLOCK = {
  * Caustic guiding (src/shaders/lights/caustic_guide.glsl): at most this many
  * (mirror sphere, light) pairs; the probability of drawing a rough vertex's
  * next direction towards a light's image in a mirror; how much wider than
- * the estimated image the cone is; fixed-point iterations for the mirror point.
+ * the estimated image the cone is.
  */
 /** caustic_guide.glsl holds exactly two named cones: change both together. */
 export const MAX_GUIDES = 2;
 export const GUIDE_PROBABILITY = 0.1;
 export const GUIDE_MARGIN = 2.0;
-export const GUIDE_ITERATIONS = 1;
 /** A sphere is a guiding mirror when its specular lobe is a delta (as in material.glsl) and carries at least this weight. */
 export const GUIDE_MIN_SPECULAR = 0.5;
 /** material.glsl treats GGX lobes with alpha = r^2 below this as ideal mirrors. */
@@ -108,7 +107,6 @@ export function layoutDefines(): Record<string, string | number> {
     MAX_GUIDES,
     GUIDE_PROBABILITY: GUIDE_PROBABILITY.toFixed(6),
     GUIDE_MARGIN: GUIDE_MARGIN.toFixed(6),
-    GUIDE_ITERATIONS,
     SMOOTH_ALPHA: SMOOTH_ALPHA.toExponential(),
     BLOCK_LIGHTS: BLOCK.lights,
     MAX_RADIANCE: MAX_RADIANCE.toExponential(),

@@ -64,9 +64,14 @@ const SCENE_BLOCK_BINDING = 0;
 const SCENE_TEXTURE_UNIT = 1;
 
 export class TracePass {
-  /** Both variants are compiled up front, so no scene edit ever compiles. */
-  private readonly programs: { plain: Program; guided: Program };
-  /** The variant for the current scene: with caustic guiding only when it has guides. */
+  /**
+   * One program per number of caustic guides compiled in (0..MAX_GUIDES; see
+   * lights/caustic_guide.glsl). Those for 0 and 1 guide are compiled up front,
+   * so common edits never compile; the two-guide one (two guiding mirrors or
+   * lights in one scene) on first use.
+   */
+  private readonly programs = new Map<number, Program>();
+  /** The variant for the current scene. */
   private program: Program;
   private readonly sceneBuffer: WebGLBuffer;
   /**
@@ -77,23 +82,20 @@ export class TracePass {
    */
   private readonly sceneTexture: WebGLTexture;
 
+  private readonly defines: Record<string, string | number>;
+
   constructor(
     private readonly gl: WebGL2RenderingContext,
     sampler: SamplerKind = 'kronecker',
     russianRoulette = false,
   ) {
-    const variant = (guiding: boolean) => {
-      const program = new Program(gl, VERTEX_CHUNKS, TRACE_CHUNKS, {
-        ...layoutDefines(),
-        LOW_DISCREPANCY: sampler === 'kronecker' ? 1 : 0,
-        RUSSIAN_ROULETTE: russianRoulette ? 1 : 0,
-        CAUSTIC_GUIDING: guiding ? 1 : 0,
-      });
-      gl.uniformBlockBinding(program.handle, gl.getUniformBlockIndex(program.handle, 'SceneBlock'), SCENE_BLOCK_BINDING);
-      return program;
+    this.defines = {
+      ...layoutDefines(),
+      LOW_DISCREPANCY: sampler === 'kronecker' ? 1 : 0,
+      RUSSIAN_ROULETTE: russianRoulette ? 1 : 0,
     };
-    this.programs = { plain: variant(false), guided: variant(true) };
-    this.program = this.programs.plain;
+    this.program = this.programFor(0);
+    this.programFor(1);
     this.sceneBuffer = gl.createBuffer()!;
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
     gl.bufferData(gl.UNIFORM_BUFFER, BLOCK.size * 16, gl.DYNAMIC_DRAW);
@@ -106,6 +108,17 @@ export class TracePass {
     gl.bindTexture(gl.TEXTURE_2D, null);
   }
 
+  private programFor(guides: number): Program {
+    let program = this.programs.get(guides);
+    if (!program) {
+      program = new Program(this.gl, VERTEX_CHUNKS, TRACE_CHUNKS, { ...this.defines, CAUSTIC_GUIDES: guides });
+      const blockIndex = this.gl.getUniformBlockIndex(program.handle, 'SceneBlock');
+      this.gl.uniformBlockBinding(program.handle, blockIndex, SCENE_BLOCK_BINDING);
+      this.programs.set(guides, program);
+    }
+    return program;
+  }
+
   /** Uploads the scene: geometry and materials to the uniform block, camera to uniforms. */
   setScene(scene: Scene, width: number, height: number): void {
     const gl = this.gl;
@@ -116,9 +129,9 @@ export class TracePass {
     gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
     gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, BLOCK.size, 1, gl.RGBA, gl.FLOAT, packed);
     gl.bindTexture(gl.TEXTURE_2D, null);
-    this.program = causticGuides(scene).length > 0 ? this.programs.guided : this.programs.plain;
+    this.program = this.programFor(causticGuides(scene).length);
     const frame = cameraFrame(scene.camera);
-    for (const program of [this.programs.plain, this.programs.guided]) this.setCameraUniforms(program, scene, frame, width, height);
+    for (const program of this.programs.values()) this.setCameraUniforms(program, scene, frame, width, height);
   }
 
   private setCameraUniforms(program: Program, scene: Scene, frame: CameraFrame, width: number, height: number): void {
@@ -160,8 +173,7 @@ export class TracePass {
   }
 
   dispose(): void {
-    this.programs.plain.dispose();
-    this.programs.guided.dispose();
+    for (const program of this.programs.values()) program.dispose();
     this.gl.deleteBuffer(this.sceneBuffer);
     this.gl.deleteTexture(this.sceneTexture);
   }

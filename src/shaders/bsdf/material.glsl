@@ -42,18 +42,22 @@ struct BsdfSample {
   bool valid;
 };
 
-// Draws a direction from the lobe mixture (u.z picks the lobe, u.xy the
-// direction); `isDelta` tells that the ideal mirror was picked.
-vec3 sampleMaterialDirection(Material m, vec3 wo, vec3 u, out bool isDelta) {
+// Draws a direction from the lobe mixture (u.z picks the lobe, u.x the
+// radius and `circle` = unitCircle(u.y) the angle of a point on the disk);
+// `isDelta` tells that the ideal mirror was picked.
+vec3 sampleMaterialDirection(Material m, vec3 wo, vec3 u, vec2 circle, out bool isDelta) {
   bool chooseSpecular = u.z >= m.roughness;
   isDelta = chooseSpecular && specularIsDelta(m);
   // One polar disk point serves both lobes (one sin/cos pair per bounce):
   // projected up it is cosine-distributed, warped it is a visible normal.
   float r2 = u.x;
-  float phi = 2.0 * PI * u.y;
-  vec2 disk = sqrt(r2) * vec2(cos(phi), sin(phi));
+  vec2 disk = sqrt(r2) * circle;
   vec3 h = isDelta ? vec3(0.0, 0.0, 1.0) : sampleGgxVisibleNormal(wo, specularAlpha(m), disk);
   return chooseSpecular ? reflect(-wo, h) : vec3(disk, sqrt(1.0 - r2));
+}
+
+vec3 sampleMaterialDirection(Material m, vec3 wo, vec3 u, out bool isDelta) {
+  return sampleMaterialDirection(m, wo, u, unitCircle(u.y), isDelta);
 }
 
 BsdfSample sampleMaterial(Material m, vec3 wo, vec3 u) {

@@ -24,14 +24,24 @@ vec3 sampleCosineHemisphere(vec2 u) {
   return vec3(d, sqrt(max(0.0, 1.0 - radius * radius)));
 }
 
-// Uniform direction in the cone around +z with 1 - cos(theta_max) given.
+// The point at angle 2 pi u on the unit circle: (cos, sin).
+vec2 unitCircle(float u) {
+  float phi = 2.0 * PI * u;
+  return vec2(cos(phi), sin(phi));
+}
+
+// Uniform direction in the cone around +z with 1 - cos(theta_max) given;
+// u picks the polar angle, `circle` (unitCircle) the azimuth.
 // Working with 1 - cos keeps precision for tiny cones (small, far lights).
-vec3 sampleUniformCone(vec2 u, float oneMinusCosMax) {
-  float oneMinusCos = u.x * oneMinusCosMax;
+vec3 sampleUniformCone(float u, vec2 circle, float oneMinusCosMax) {
+  float oneMinusCos = u * oneMinusCosMax;
   float cosTheta = 1.0 - oneMinusCos;
   float sinTheta = sqrt(max(0.0, oneMinusCos * (2.0 - oneMinusCos)));
-  float phi = 2.0 * PI * u.y;
-  return vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
+  return vec3(sinTheta * circle, cosTheta);
+}
+
+vec3 sampleUniformCone(vec2 u, float oneMinusCosMax) {
+  return sampleUniformCone(u.x, unitCircle(u.y), oneMinusCosMax);
 }
 
 float uniformConePdf(float oneMinusCosMax) {

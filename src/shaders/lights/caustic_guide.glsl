@@ -10,21 +10,21 @@
 // whatever the cone (a poor cone only wastes samples). The (mirror, light)
 // pairs are chosen on the CPU per scene upload (src/render/packScene.ts).
 //
-// CAUSTIC_GUIDING selects between two programs compiled up front: with it,
-// and without (for scenes with no guide; SwiftShader executes every line of
-// a shader whatever the branches, so unused guiding would still cost).
+// CAUSTIC_GUIDES (0, 1 or 2) is the number of guides compiled in: one
+// program per count (src/render/passes/trace.ts), because SwiftShader executes
+// every line of a shader whatever the branches, so an unused cone would
+// still cost its full construction at every vertex.
 
-#if CAUSTIC_GUIDING
+#if CAUSTIC_GUIDES > 0
 
-// The guides of the current vertex: globals, and two named cones rather
-// than an array (MAX_GUIDES is 2): SwiftShader copies arrays passed by value
-// and indexes local arrays slowly, which cost more than the guiding itself.
-vec4 guideCone0;         // xyz = unit axis, w = 1 - cos(half angle)
+// The guides of the current vertex, as globals and named cones rather than
+// an array: SwiftShader copies arrays passed by value and indexes local
+// arrays slowly. xyz = unit axis, w = 1 - cos(half angle).
+vec4 guideCone0;
+#if CAUSTIC_GUIDES > 1
 vec4 guideCone1;
-int guidesHere;          // cones in use (0, 1 or 2)
+#endif
 float guideProbability;  // of drawing from the cones at this vertex
-
-int guideCount() { return int(uCounts.w); }
 
 // The cone towards the light's image in mirror `guide` as seen from x; the
 // hemisphere around n when there is no sensible image (x or the light inside
@@ -37,16 +37,16 @@ vec4 guideCone(vec3 x, vec3 n, int guide) {
   vec3 toLight = light.xyz - mirror.xyz;
   float distX = length(toX);
   float distLight = length(toLight);
-  if (distX <= mirror.w * 1.0001 || distLight <= mirror.w + light.w) return vec4(n, 1.0);
-  // Reflection point: its normal bisects the directions to x and the light.
+  bool sensible = distX > mirror.w * 1.0001 && distLight > mirror.w + light.w;
+  // Reflection point: its normal bisects the directions to x and the light;
+  // one fixed-point step from the bisector seen from the centre.
   vec3 h = normalize(toX / distX + toLight / distLight);
-  for (int k = 0; k < GUIDE_ITERATIONS; k++) {
-    vec3 p = mirror.xyz + mirror.w * h;
-    h = normalize(normalize(x - p) + normalize(light.xyz - p));
-  }
-  vec3 toP = mirror.xyz + mirror.w * h - x;
+  vec3 p = mirror.xyz + mirror.w * h;
+  h = normalize(normalize(x - p) + normalize(light.xyz - p));
+  p = mirror.xyz + mirror.w * h;
+  vec3 toP = p - x;
   float dx = length(toP);
-  float dl = length(light.xyz - (mirror.xyz + mirror.w * h));
+  float dl = length(light.xyz - p);
   // Paraxial convex mirror (focal length R / 2, sagittal R / (2 cos i) off
   // axis, the larger extent): the light's image and its depth behind p.
   float cosI = max(0.05, dot(h, -toP / dx));
@@ -55,27 +55,32 @@ vec4 guideCone(vec3 x, vec3 n, int guide) {
   float depth = dl * focal / (dl + focal);
   float s = clamp(GUIDE_MARGIN * image / (dx + depth), 3e-3, 0.5);
   float s2 = s * s;
-  return vec4(toP / dx, s2 / (1.0 + sqrt(1.0 - s2)));
+  return sensible ? vec4(toP / dx, s2 / (1.0 + sqrt(1.0 - s2))) : vec4(n, 1.0);
 }
 
 void buildGuides(vec3 x, vec3 n, Material m) {
-  guidesHere = hasSmoothLobe(m) ? guideCount() : 0;
   // Rough (diffuse-like) vertices are guided most: a glossy lobe already
-  // concentrates its samples and would lose more than it gains.
-  guideProbability = guidesHere > 0 ? GUIDE_PROBABILITY * m.roughness : 0.0;
+  // concentrates its samples and would lose more than it gains; an ideal
+  // mirror (roughness 0) is not guided at all.
+  guideProbability = GUIDE_PROBABILITY * m.roughness;
   guideCone0 = guideCone(x, n, 0);
-  guideCone1 = guidesHere > 1 ? guideCone(x, n, 1) : guideCone0;
+#if CAUSTIC_GUIDES > 1
+  guideCone1 = guideCone(x, n, 1);
+#endif
 }
 
-// Density (solid angle) of drawing the world direction w from the cones.
+// Density (solid angle) of drawing the world direction w from a cone.
 float conePdf(vec4 cone, vec3 w) {
   return 1.0 - dot(w, cone.xyz) <= cone.w ? uniformConePdf(cone.w) : 0.0;
 }
 
+// ... from the cones, each chosen with equal probability.
 float guidePdf(vec3 w) {
-  if (guidesHere == 0) return 0.0;
-  float pdf = conePdf(guideCone0, w) + (guidesHere > 1 ? conePdf(guideCone1, w) : 0.0);
-  return pdf / float(guidesHere);
+#if CAUSTIC_GUIDES > 1
+  return 0.5 * (conePdf(guideCone0, w) + conePdf(guideCone1, w));
+#else
+  return conePdf(guideCone0, w);
+#endif
 }
 
 // The mixture pdf of the "BSDF sampling" technique, given the BSDF's own.
@@ -83,31 +88,31 @@ float guidedPdf(float bsdfPdf, vec3 w) {
   return (1.0 - guideProbability) * bsdfPdf + guideProbability * guidePdf(w);
 }
 
-// One direction of the mixture, weighted by its exact pdf. u: .xy direction,
-// .z BSDF lobe, .w technique; choice: which cone.
+// One direction of the mixture, weighted by its exact pdf. u: .xy direction
+// (both techniques share its angle, so one sin/cos pair serves), .z BSDF
+// lobe, .w technique; choice: which cone. Branch-free: both directions are
+// drawn and one is selected.
 BsdfSample sampleGuided(Material m, mat3 frame, vec3 wo, vec4 u, float choice) {
-  BsdfSample s = BsdfSample(vec3(0.0), vec3(0.0), 0.0, false, false);
-  if (wo.z <= 0.0) return s;
+  vec2 circle = unitCircle(u.y);
+  bool isDelta;
+  vec3 wiBsdf = sampleMaterialDirection(m, wo, u.xyz, circle, isDelta);
+#if CAUSTIC_GUIDES > 1
+  vec4 cone = choice >= 0.5 ? guideCone1 : guideCone0;
+#else
+  vec4 cone = guideCone0;
+#endif
+  vec3 worldGuide = basisAround(cone.xyz) * sampleUniformCone(u.x, circle, cone.w);
   bool guided = u.w < guideProbability;
-  vec3 wiBsdf = sampleMaterialDirection(m, wo, u.xyz, s.isDelta);
-  vec3 world = frame * wiBsdf;
-  if (guided) {
-    vec4 cone = choice * float(guidesHere) >= 1.0 ? guideCone1 : guideCone0;
-    world = basisAround(cone.xyz) * sampleUniformCone(u.xy, cone.w);
-    s.isDelta = false;
-  }
-  s.wi = guided ? world * frame : wiBsdf;
-  if (s.isDelta) {
-    // The mirror lobe is drawn with probability (1 - p)(1 - r).
-    s.weight = m.color / (1.0 - guideProbability);
-    s.valid = true;
-    return s;
-  }
+
+  BsdfSample s;
+  s.wi = guided ? worldGuide * frame : wiBsdf;
+  s.isDelta = isDelta && !guided;
   float bsdfPdf;
   vec3 f = evalMaterial(m, wo, s.wi, bsdfPdf);
-  s.pdf = guidedPdf(bsdfPdf, world);
-  s.valid = s.wi.z > 0.0 && s.pdf > 0.0;
-  s.weight = s.valid ? f / s.pdf : vec3(0.0);
+  s.pdf = s.isDelta ? 0.0 : guidedPdf(bsdfPdf, guided ? worldGuide : frame * wiBsdf);
+  // The mirror lobe is drawn with probability (1 - p)(1 - r).
+  s.weight = s.isDelta ? m.color / (1.0 - guideProbability) : f / s.pdf;
+  s.valid = wo.z > 0.0 && (s.isDelta || (s.wi.z > 0.0 && s.pdf > 0.0));
   return s;
 }
 
