@@ -88,18 +88,31 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   return hit;
 }
 
+// How far outside the sphere the segment from origin to
+// origin + tMax * direction (unit) stays: squared distance of its closest
+// point to the centre minus the squared radius; negative when it passes
+// through. No root is solved (no sqrt, no division): the segment starts
+// spawnRayOrigin's offset outside its own surface, which this resolves
+// (the offset is about 30 ulps of |oc|^2).
+float segmentClearance(vec3 origin, vec3 direction, float tMax, vec4 sphere) {
+  vec3 oc = origin - sphere.xyz;
+  float tClosest = clamp(-dot(oc, direction), 0.0, tMax);
+  vec3 closest = oc + tClosest * direction;
+  return dot(closest, closest) - sphere.w * sphere.w;
+}
+
 // True when something blocks the segment from origin to origin + tMax * direction.
 // `skipLight` is the light the segment ends on.
 bool occluded(vec3 origin, vec3 direction, float tMax, int skipLight) {
-  float tBlock = groundHitT(origin, direction);
+  float clearance = INFINITY;
   for (int i = 0; i < sphereCount(); i++) {
-    tBlock = min(tBlock, sphereHitT(origin, direction, sphereGeometry(i)));
+    clearance = min(clearance, segmentClearance(origin, direction, tMax, sphereGeometry(i)));
   }
   for (int i = 0; i < lightCount(); i++) {
-    float t = sphereHitT(origin, direction, lightGeometry(i));
-    tBlock = min(tBlock, i == skipLight ? INFINITY : t);
+    float c = segmentClearance(origin, direction, tMax, lightGeometry(i));
+    clearance = min(clearance, i == skipLight ? INFINITY : c);
   }
-  return tBlock < tMax;
+  return clearance < 0.0 || groundHitT(origin, direction) < tMax;
 }
 
 // Origin for a ray leaving `hit` into the side of `side` (a direction).
