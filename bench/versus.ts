@@ -4,12 +4,14 @@
  * one on the seed scene at 512x384, the issue's throughput target.
  *   npx tsx bench/versus.ts OTHER_WEB_ROOT [--scene seed|FILE.json] [--size 512x384] [--seconds 6] [--rounds 4]
  * OTHER_WEB_ROOT is another checkout's dist/web (its headless page must have
- * the same load/render API). Prints paths/s per round and the median ratio.
+ * the same load/render API). Prints paths per wall second and per CPU second
+ * of the GPU process (where SwiftShader runs; other load on the shared
+ * machine disturbs it less) per round, and the median ratios.
  */
 import { readFileSync } from 'node:fs';
 import { openRenderSession, webRoot } from '../src/node/session';
 import { parseSceneText } from '../src/scene/schema';
-import { projectRoot } from './common';
+import { projectRoot, renderFor } from './common';
 
 function arg(name: string, fallback: string): string {
   const i = process.argv.indexOf(`--${name}`);
@@ -28,26 +30,29 @@ const rounds = Number(arg('rounds', '4'));
 const scenePath = sceneName.endsWith('.json') ? sceneName : new URL(`test/fixtures/scenes/${sceneName}.json`, projectRoot());
 const scene = parseSceneText(readFileSync(scenePath, 'utf8'));
 
-async function pathRate(root: string): Promise<number> {
+interface Rate { wall: number; cpu: number }
+
+async function pathRate(root: string): Promise<Rate> {
   const session = await openRenderSession({ webRoot: root });
   try {
     await session.load(scene, { width, height, seed: 1 });
     await session.render(1); // compile and warm up outside the clock
-    const start = performance.now();
-    let spp = 1;
-    while (performance.now() - start < seconds * 1000) spp = await session.render(2);
-    return ((spp - 1) * width * height) / ((performance.now() - start) / 1000);
+    const run = await renderFor(session, seconds, 0.5);
+    const paths = run.spp * width * height;
+    return { wall: paths / run.seconds, cpu: paths / (run.cpuSeconds ?? NaN) };
   } finally {
     await session.close();
   }
 }
 
-const rates: { other: number[]; current: number[] } = { other: [], current: [] };
+const rates: { other: Rate[]; current: Rate[] } = { other: [], current: [] };
+const mega = (r: number) => (r / 1e6).toFixed(3);
 for (let round = 0; round < rounds; round++) {
   rates.other.push(await pathRate(other));
   rates.current.push(await pathRate(webRoot()));
-  console.log(`round ${round + 1}: other ${(rates.other[round] / 1e6).toFixed(3)} M paths/s, current ${(rates.current[round] / 1e6).toFixed(3)} M paths/s`);
+  const [o, c] = [rates.other[round], rates.current[round]];
+  console.log(`round ${round + 1}: other ${mega(o.wall)} M paths/s (${mega(o.cpu)} per CPU-s), current ${mega(c.wall)} M paths/s (${mega(c.cpu)} per CPU-s)`);
 }
 const median = (v: number[]) => [...v].sort((a, b) => a - b)[Math.floor(v.length / 2)];
-const ratios = rates.current.map((c, i) => c / rates.other[i]);
-console.log(`${sceneName} ${width}x${height}: current / other = ${median(ratios).toFixed(2)} (median of ${rounds} interleaved rounds)`);
+const ratio = (key: keyof Rate) => median(rates.current.map((c, i) => c[key] / rates.other[i][key])).toFixed(2);
+console.log(`${sceneName} ${width}x${height}: current / other = ${ratio('wall')} per wall second, ${ratio('cpu')} per CPU second (medians of ${rounds} interleaved rounds)`);

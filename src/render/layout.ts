@@ -15,6 +15,12 @@ export const SPHERE_VEC4S = Object.keys(SPHERE_FIELDS).length;
 export const LIGHT_VEC4S = Object.keys(LIGHT_FIELDS).length;
 export const GROUND_VEC4S = Object.keys(GROUND_FIELDS).length;
 
+/** caustic_guide.glsl holds exactly two named cones: change both together. */
+export const MAX_GUIDES = 2;
+/** vec4 slots of one guide in the block: the mirror's and the light's [center.xyz, radius]. */
+export const GUIDE_FIELDS = { MIRROR: 0, LIGHT: 1 } as const;
+export const GUIDE_VEC4S = Object.keys(GUIDE_FIELDS).length;
+
 /** vec4 offsets of the members of the std140 `SceneBlock` uniform block. */
 export const BLOCK = {
   spheres: 0,
@@ -23,7 +29,7 @@ export const BLOCK = {
   environment: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S + GROUND_VEC4S,
   counts: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S + GROUND_VEC4S + 1,
   guides: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S + GROUND_VEC4S + 2,
-  size: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S + GROUND_VEC4S + 2 + 2,
+  size: MAX_SPHERES * SPHERE_VEC4S + MAX_LIGHTS * LIGHT_VEC4S + GROUND_VEC4S + 2 + MAX_GUIDES * GUIDE_VEC4S,
 } as const;
 
 /**
@@ -32,8 +38,6 @@ export const BLOCK = {
  * next direction towards a light's image in a mirror; how much wider than
  * the estimated image the cone is.
  */
-/** caustic_guide.glsl holds exactly two named cones: change both together. */
-export const MAX_GUIDES = 2;
 export const GUIDE_PROBABILITY = 0.1;
 export const GUIDE_MARGIN = 2.0;
 /** A sphere is a guiding mirror when its specular lobe is a delta (as in material.glsl) and carries at least this weight. */
@@ -105,6 +109,9 @@ export function layoutDefines(): Record<string, string | number> {
     GROUND_MATERIAL: GROUND_FIELDS.MATERIAL,
     BLOCK_SPHERES: BLOCK.spheres,
     MAX_GUIDES,
+    GUIDE_VEC4S,
+    GUIDE_MIRROR: GUIDE_FIELDS.MIRROR,
+    GUIDE_LIGHT: GUIDE_FIELDS.LIGHT,
     GUIDE_PROBABILITY: GUIDE_PROBABILITY.toFixed(6),
     GUIDE_MARGIN: GUIDE_MARGIN.toFixed(6),
     SMOOTH_ALPHA: SMOOTH_ALPHA.toExponential(),

@@ -4,7 +4,7 @@
  */
 import type { Material, Scene } from '../scene/types';
 import {
-  BLOCK, GROUND_FIELDS, GUIDE_MIN_SPECULAR, LIGHT_FIELDS, LIGHT_VEC4S, MAX_GUIDES, SMOOTH_ALPHA, SPHERE_FIELDS, SPHERE_VEC4S,
+  BLOCK, GROUND_FIELDS, GUIDE_FIELDS, GUIDE_MIN_SPECULAR, GUIDE_VEC4S, LIGHT_FIELDS, LIGHT_VEC4S, MAX_GUIDES, SMOOTH_ALPHA, SPHERE_FIELDS, SPHERE_VEC4S,
 } from './layout';
 
 export function packScene(scene: Scene): Float32Array {
@@ -29,7 +29,14 @@ export function packScene(scene: Scene): Float32Array {
   const environment = scene.environment;
   if (environment) put(BLOCK.environment, environment.color.map((c) => c * environment.intensity));
   const guides = causticGuides(scene);
-  guides.forEach(([sphere, light], i) => put(BLOCK.guides + i, [sphere, light, 0, 0]));
+  // The guides' geometry itself, not indices: the shader reads it with
+  // constant indices, which SwiftShader does without a texture fetch.
+  guides.forEach(([sphere, light], i) => {
+    const { center, radius } = scene.spheres[sphere];
+    const { position, radius: lightRadius } = scene.lights[light];
+    put(BLOCK.guides + i * GUIDE_VEC4S + GUIDE_FIELDS.MIRROR, [...center, radius]);
+    put(BLOCK.guides + i * GUIDE_VEC4S + GUIDE_FIELDS.LIGHT, [...position, lightRadius]);
+  });
   put(BLOCK.counts, [scene.spheres.length, scene.lights.length, scene.ground ? 1 : 0, guides.length]);
   return data;
 }

@@ -23,7 +23,7 @@ bool scatters(Hit hit) { return hit.kind == HIT_SPHERE || hit.kind == HIT_GROUND
 // MIS-weighted against light sampling at the previous vertex (unless that
 // vertex scattered through a Dirac delta); nothing for other surfaces.
 vec3 emitted(Hit hit, vec3 direction, vec3 previousPosition, bool previousDelta, float previousPdf) {
-  float weight = previousDelta ? 1.0 : powerHeuristic(previousPdf, lightPdf(previousPosition, hit.index));
+  float weight = previousDelta ? 1.0 : powerHeuristic(previousPdf, lightPdf(previousPosition, hit.geometry));
   vec3 light = dot(direction, hit.normal) < 0.0 ? lightRadiance(hit.index) * weight : vec3(0.0);
   return hit.kind == HIT_NONE ? uEnvironment.rgb : hit.kind == HIT_LIGHT ? light : vec3(0.0);
 }

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { BLOCK, GROUND_FIELDS, LIGHT_FIELDS, LIGHT_VEC4S, MAX_GUIDES, SPHERE_FIELDS, SPHERE_VEC4S } from '../../src/render/layout';
+import { BLOCK, GROUND_FIELDS, GUIDE_FIELDS, LIGHT_FIELDS, LIGHT_VEC4S, MAX_GUIDES, SPHERE_FIELDS, SPHERE_VEC4S } from '../../src/render/layout';
 import { causticGuides, packScene } from '../../src/render/packScene';
 import { parseScene } from '../../src/scene/schema';
 
@@ -51,7 +51,9 @@ describe('causticGuides', () => {
     expect(causticGuides(scene)).toEqual([[2, 1], [1, 1]].slice(0, MAX_GUIDES));
     const packed = packScene(scene);
     expect(vec4(packed, BLOCK.counts)[3]).toBe(Math.min(MAX_GUIDES, 4));
-    expect(vec4(packed, BLOCK.guides).slice(0, 2)).toEqual([2, 1]);
+    // Guide 0 = (sphere 2, light 1): their geometry.
+    expect(vec4(packed, BLOCK.guides + GUIDE_FIELDS.MIRROR)).toEqual([-2, 1, 0, 1]);
+    expect(vec4(packed, BLOCK.guides + GUIDE_FIELDS.LIGHT)).toEqual([0, 5, 0, 0.5]);
   });
 
   it('has no guides without mirrors or without lights', () => {

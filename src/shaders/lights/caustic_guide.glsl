@@ -30,9 +30,8 @@ float guideProbability;  // of drawing from the cones at this vertex
 // hemisphere around n when there is no sensible image (x or the light inside
 // the mirror), which keeps the mixture a valid density everywhere.
 vec4 guideCone(vec3 x, vec3 n, int guide) {
-  vec4 ids = uGuides[guide];
-  vec4 mirror = sphereGeometry(int(ids.x));
-  vec4 light = lightGeometry(int(ids.y));
+  vec4 mirror = uGuides[guide * GUIDE_VEC4S + GUIDE_MIRROR];
+  vec4 light = uGuides[guide * GUIDE_VEC4S + GUIDE_LIGHT];
   vec3 toX = x - mirror.xyz;
   vec3 toLight = light.xyz - mirror.xyz;
   float distX = length(toX);

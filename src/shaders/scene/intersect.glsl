@@ -10,6 +10,7 @@ struct Hit {
   vec3 position;
   vec3 normal;    // outward geometric normal of the surface
   float scale;    // size of the hit object, for the self-intersection offset
+  vec4 geometry;  // of the sphere or light hit: [center, radius]
 };
 
 // Nearest t > 0 where the ray (unit direction) meets the sphere, or
@@ -85,6 +86,7 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   hit.normal = isGround ? vec3(0.0, 1.0, 0.0) : sphereNormal;
   hit.position = isGround ? groundPosition : spherePosition;
   hit.scale = isGround ? abs(groundHeight()) : geometry.w;
+  hit.geometry = geometry;
   return hit;
 }
 

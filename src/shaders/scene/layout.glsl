@@ -6,7 +6,7 @@ layout(std140) uniform SceneBlock {
   vec4 uGround[GROUND_VEC4S];
   vec4 uEnvironment;   // rgb = radiance of escaping rays
   vec4 uCounts;        // x = spheres, y = lights, z = ground enabled (0/1), w = caustic guides
-  vec4 uGuides[MAX_GUIDES];  // x = mirror sphere, y = light (lights/caustic_guide.glsl)
+  vec4 uGuides[MAX_GUIDES * GUIDE_VEC4S];  // mirror and light geometry (lights/caustic_guide.glsl)
 };
 
 // The same data as a texture (row 0, one texel per vec4) for the dynamically
