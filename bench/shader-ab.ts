@@ -40,7 +40,7 @@ const PATCHES: Record<string, [string | RegExp, string][]> = {
   // NEE's shadow ray loop removed (light always visible).
   noShadow: [['if (occluded(origin, wiWorld, tLight, light)) return vec3(0.0);', '']],
   // The whole NEE call removed.
-  noNee: [['radiance += throughput * sampleDirectLight(hit, frame, wo, material, uLight.xyz);', '']],
+  noNee: [['vec3 direct = sampleDirectLight(hit, frame, wo, material, uLight.xyz);', 'vec3 direct = vec3(0.0);']],
   // BSDF evaluation in NEE replaced by a constant.
   noNeeEval: [['vec3 f = evalMaterial(m, wo, wi, bsdfPdf);', 'vec3 f = vec3(wi.z); bsdfPdf = wi.z;']],
   // BSDF sampling replaced by a trivial cosine-ish direction.
@@ -67,6 +67,10 @@ const PATCHES: Record<string, [string | RegExp, string][]> = {
   ],
   // Seed scene only: loops over 5 spheres and 1 light unrolled, constant-index uniform-block reads.
   unrolled: unrolledLoops(5, 1),
+  // Caustic guiding compiled out (as for a scene without guides).
+  noGuide: [['#if CAUSTIC_GUIDES > 0', '#if 0']],
+  // MIS weight at light hits replaced by 1 (wrong image; cost share).
+  noEmittedPdf: [['powerHeuristic(previousPdf, lightPdf(previousPosition, hit.geometry))', '1.0']],
   // The camera: a fixed direction per pixel.
   noCamera: [[/void generateCameraRay\(vec2 pixel, out vec3 origin, out vec3 direction\) \{/,
     'void generateCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) { origin = uCameraPosition; direction = normalize(vec3(pixel / uResolution - 0.5, -1.0)); return; }\nvoid unusedCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) {']],
@@ -136,7 +140,7 @@ async function main(argv: string[]): Promise<void> {
     const original = WebGL2RenderingContext.prototype.shaderSource;
     WebGL2RenderingContext.prototype.shaderSource = function (shader: WebGLShader, text: string) {
       const replacement = (window as unknown as { __traceSource?: string }).__traceSource;
-      if (replacement && text.includes('traceRadiance(') && text.includes('uSamplesPerDraw')) text = replacement;
+      if (replacement && text.includes('uSamplesPerDraw') && text.includes('outSum')) text = replacement;
       return original.call(this, shader, text);
     };
   });

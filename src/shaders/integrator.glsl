@@ -28,13 +28,12 @@ vec3 emitted(Hit hit, vec3 direction, vec3 previousPosition, bool previousDelta,
   return hit.kind == HIT_NONE ? uEnvironment.rgb : hit.kind == HIT_LIGHT ? light : vec3(0.0);
 }
 
-vec3 traceRadiance(vec3 origin, vec3 direction) {
-  Hit hit = intersectScene(origin, direction);
-  vec3 radiance = emitted(hit, direction, origin, true, 0.0);
+// The rest of a path whose camera ray hit `hit` (see scatters), given the
+// radiance it has seen so far.
+vec3 traceRadiance(vec3 direction, Hit hit, vec3 radiance) {
   vec3 throughput = vec3(1.0);
 
   for (int depth = 0; ; depth++) {
-    if (depth >= uMaxBounces || !scatters(hit)) break;
     Material material = surfaceMaterial(hit.kind == HIT_SPHERE, hit.index);
     vec3 normal = dot(direction, hit.normal) < 0.0 ? hit.normal : -hit.normal;
     mat3 frame = basisAround(normal);

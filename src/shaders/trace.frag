@@ -16,17 +16,42 @@ bool isValidRadiance(vec3 c) {
   return all(greaterThanEqual(c, vec3(0.0))) && all(lessThan(c, vec3(MAX_RADIANCE)));
 }
 
+void accumulate(inout vec4 sum, vec3 radiance) {
+  sum.rgb += isValidRadiance(radiance) ? radiance : vec3(0.0);
+  sum.a += isValidRadiance(radiance) ? 0.0 : 1.0;
+}
+
+// SwiftShader runs the lanes of a pixel quad in lock step and executes a
+// loop body at least once (masked) per entry. So samples whose camera ray
+// scatters nowhere (the sky, a light) are finished in a cheap inner loop,
+// and the bounce loop of traceRadiance is entered only for a sample that
+// scatters: a quad of sky costs one masked pass through it per draw, not
+// one per sample. Each pixel still adds its samples in order, so the sums
+// do not depend on how samples are split into draws.
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 sum = texelFetch(uAccumulation, pixel, 0);
   rngBeginPixel(uvec2(pixel), uSeed);
-  for (uint s = 0u; s < uSamplesPerDraw; s++) {
-    rngBeginSample(uFirstSample + s);
-    vec3 origin, direction;
-    generateCameraRay(vec2(pixel), origin, direction);
-    vec3 radiance = traceRadiance(origin, direction);
-    if (isValidRadiance(radiance)) sum.rgb += radiance;
-    else sum.a += 1.0;
+  uint next = 0u;
+  for (;;) {
+    // Start samples until one scatters; finish those that do not.
+    bool scattering = false;
+    vec3 direction, radiance;
+    Hit hit;
+    for (;;) {
+      if (scattering || next >= uSamplesPerDraw) break;
+      rngBeginSample(uFirstSample + next);
+      next++;
+      vec3 origin;
+      generateCameraRay(vec2(pixel), origin, direction);
+      hit = intersectScene(origin, direction);
+      radiance = emitted(hit, direction, origin, true, 0.0);
+      scattering = uMaxBounces > 0 && scatters(hit);
+      if (!scattering) accumulate(sum, radiance);
+    }
+    if (!scattering) break;
+    accumulate(sum, traceRadiance(direction, hit, radiance));
+    if (next >= uSamplesPerDraw) break;
   }
   outSum = sum;
 }
