@@ -101,8 +101,8 @@ export async function launchChromium(options: SessionOptions = {}): Promise<Brow
   return chromium.launch({ executablePath: chromiumPath(options), ...LAUNCH_OPTIONS });
 }
 
-/** Paths per draw: ~0.4 s on SwiftShader, well under the GPU watchdog; more per draw amortizes the per-draw cost. */
-const SAMPLES_PER_DRAW_BUDGET = 500_000;
+/** Paths per draw: ~0.4 s on SwiftShader, well under the GPU watchdog; more per draw amortizes the per-draw cost (and a sample that scatters nowhere costs less: trace.frag). */
+const SAMPLES_PER_DRAW_BUDGET = 1_000_000;
 
 export async function openRenderSession(options: SessionOptions = {}): Promise<RenderSession> {
   const root = options.webRoot ?? webRoot();
