@@ -71,6 +71,8 @@ const PATCHES: Record<string, [string | RegExp, string][]> = {
   noGuide: [['#if CAUSTIC_GUIDES > 0', '#if 0']],
   // MIS weight at light hits replaced by 1 (wrong image; cost share).
   noEmittedPdf: [['powerHeuristic(previousPdf, lightPdf(previousPosition, hit.geometry))', '1.0']],
+  // Caustic guide without the fixed-point step towards the reflection point.
+  noGuideStep: [['  h = normalize(normalize(x - p) + normalize(light.xyz - p));\n  p = mirror.xyz + mirror.w * h;\n', '']],
   // The camera: a fixed direction per pixel.
   noCamera: [[/void generateCameraRay\(vec2 pixel, out vec3 origin, out vec3 direction\) \{/,
     'void generateCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) { origin = uCameraPosition; direction = normalize(vec3(pixel / uResolution - 0.5, -1.0)); return; }\nvoid unusedCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) {']],

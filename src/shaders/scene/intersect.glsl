@@ -17,12 +17,13 @@ struct Hit {
 // INFINITY. Computes the discriminant from the ray's closest approach to the
 // centre (Haines et al., Ray Tracing Gems ch. 7) to stay accurate for large
 // radii and distant spheres; the near root without cancellation:
-// q = -b - sign(b) h and c / q.
+// q = -b - sign(b) h and c / q. Outside the sphere (c > 0) the roots share
+// their sign and c / q is the nearer; inside, the positive root is the
+// larger. (An exactly tangent ray through b = 0 gives 0 / 0: a miss.)
 //
-// Branch-free, as is all code on the per-bounce path: SwiftShader runs both
-// sides of every branch under lane masks, and its code is dominated by the
-// masked stores that merge values at the end of an if; a select costs far
-// less (measured with bench/shader-ab.ts).
+// Branch-free, like the other code run once per object: SwiftShader runs
+// both sides of every branch under lane masks, and merging values after an
+// if costs masked stores; a select costs less.
 float sphereHitT(vec3 origin, vec3 direction, vec4 sphere) {
   vec3 oc = origin - sphere.xyz;
   float b = dot(oc, direction);
@@ -32,10 +33,8 @@ float sphereHitT(vec3 origin, vec3 direction, vec4 sphere) {
   float s = sqrt(max(h, 0.0));
   float q = -b - (b >= 0.0 ? s : -s);
   float c = dot(oc, oc) - r2;
-  float t1 = q != 0.0 ? c / q : 0.0;
-  float tNear = min(q, t1);
-  float tFar = max(q, t1);
-  float t = tNear > 0.0 ? tNear : tFar;
+  float t1 = c / q;
+  float t = c > 0.0 ? t1 : max(q, t1);
   t = t > 0.0 ? t : INFINITY;
   return h >= 0.0 ? t : INFINITY;
 }
