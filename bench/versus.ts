@@ -11,7 +11,7 @@
 import { readFileSync } from 'node:fs';
 import { openRenderSession, webRoot } from '../src/node/session';
 import { parseSceneText } from '../src/scene/schema';
-import { projectRoot, renderFor } from './common';
+import { gitRevision, projectRoot, renderFor, writeResult } from './common';
 
 function arg(name: string, fallback: string): string {
   const i = process.argv.indexOf(`--${name}`);
@@ -56,3 +56,15 @@ for (let round = 0; round < rounds; round++) {
 const median = (v: number[]) => [...v].sort((a, b) => a - b)[Math.floor(v.length / 2)];
 const ratio = (key: keyof Rate) => median(rates.current.map((c, i) => c[key] / rates.other[i][key])).toFixed(2);
 console.log(`${sceneName} ${width}x${height}: current / other = ${ratio('wall')} per wall second, ${ratio('cpu')} per CPU second (medians of ${rounds} interleaved rounds)`);
+const file = writeResult('versus', {
+  date: new Date().toISOString(),
+  scene: sceneName,
+  width,
+  height,
+  maxBounces: scene.render.maxBounces,
+  secondsPerRun: seconds,
+  current: { revision: gitRevision(), rates: rates.current },
+  other: { webRoot: other, rates: rates.other },
+  ratio: { wall: Number(ratio('wall')), cpu: Number(ratio('cpu')) },
+});
+console.log(`saved ${file}`);
