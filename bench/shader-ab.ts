@@ -8,6 +8,8 @@
  * replaced by the variant's text at shaderSource() time, so no rebuild of the
  * page is needed (but dist/web must exist: npx vite build).
  *   npx tsx bench/shader-ab.ts --variants base=src/shaders,noShadow=src/shaders+noShadow [--scene seed] [--size 512x384] [--rounds 5] [--seconds 2] [--spp 0] [--seeds 2]
+ * A variant may also be a whole trace shader (a path ending in .frag), and
+ * DUMP_VARIANT=SPEC prints a variant's assembled text instead of running.
  */
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
@@ -44,7 +46,7 @@ const PATCHES: Record<string, [string | RegExp, string][]> = {
   // BSDF evaluation in NEE replaced by a constant.
   noNeeEval: [['vec3 f = evalMaterial(m, wo, wi, bsdfPdf);', 'vec3 f = vec3(wi.z); bsdfPdf = wi.z;']],
   // BSDF sampling replaced by a trivial cosine-ish direction.
-  noBsdfSample: [['BsdfSample bs = sampleMaterial(material, wo, uBsdf.xyz);',
+  noBsdfSample: [['BsdfSample bs = sampleGuided(material, frame, wo, uBsdf, uLight.w);',
     'BsdfSample bs = BsdfSample(normalize(vec3(uBsdf.xy - 0.5, 1.0)), material.color, 1.0, false, true);']],
   // Light-cone construction + cone sampling replaced by the axis.
   noCone: [['vec3 wiWorld = basisAround(cone.axis) * sampleUniformCone(u.xy, cone.oneMinusCosMax);', 'vec3 wiWorld = cone.axis;']],
@@ -65,8 +67,6 @@ const PATCHES: Record<string, [string | RegExp, string][]> = {
     [/vec4 sphereGeometry\(int i\) \{[^\n]*\}/, 'vec4 sphereGeometry(int i) { return uSpheres[i * SPHERE_VEC4S + SPHERE_GEOMETRY]; }'],
     [/vec4 lightGeometry\(int i\) \{[^\n]*\}/, 'vec4 lightGeometry(int i) { return uLights[i * LIGHT_VEC4S + LIGHT_GEOMETRY]; }'],
   ],
-  // Seed scene only: loops over 5 spheres and 1 light unrolled, constant-index uniform-block reads.
-  unrolled: unrolledLoops(5, 1),
   // Caustic guiding compiled out (as for a scene without guides).
   noGuide: [['#if CAUSTIC_GUIDES > 0', '#if 0']],
   // MIS weight at light hits replaced by 1 (wrong image; cost share).
@@ -79,21 +79,6 @@ const PATCHES: Record<string, [string | RegExp, string][]> = {
 };
 
 
-/** Edits that unroll the sphere and light loops for fixed counts (an experiment). */
-function unrolledLoops(spheres: number, lights: number): [string | RegExp, string][] {
-  const closest = (kind: string, array: string, stride: string, n: number) =>
-    Array.from({ length: n }, (_, i) =>
-      `{ float t = sphereHitT(origin, direction, ${array}[${i} * ${stride}]); bool closer = t > 0.0 && t < tMin; tMin = closer ? t : tMin; ${kind} = closer ? ${i} : ${kind}; }`).join('\n');
-  const blocked = (array: string, stride: string, n: number, skip: boolean) =>
-    Array.from({ length: n }, (_, i) =>
-      `{ float t = sphereHitT(origin, direction, ${array}[${i} * ${stride}]); blocked = blocked || (${skip ? `${i} != skipLight && ` : ''}t > 0.0 && t < tMax); }`).join('\n');
-  return [
-    [/for \(int i = 0; i < sphereCount\(\); i\+\+\) \{\n    float t = sphereHitT\(origin, direction, sphereGeometry\(i\)\);\n    bool closer[^}]*\}/, closest('sphere', 'uSpheres', 'SPHERE_VEC4S', spheres)],
-    [/for \(int i = 0; i < lightCount\(\); i\+\+\) \{\n    float t = sphereHitT\(origin, direction, lightGeometry\(i\)\);\n    bool closer[^}]*\}/, closest('light', 'uLights', 'LIGHT_VEC4S', lights)],
-    [/for \(int i = 0; i < sphereCount\(\); i\+\+\) \{\n    float t = sphereHitT\(origin, direction, sphereGeometry\(i\)\);\n    blocked[^}]*\}/, blocked('uSpheres', 'SPHERE_VEC4S', spheres, false)],
-    [/for \(int i = 0; i < lightCount\(\); i\+\+\) \{\n    float t = sphereHitT\(origin, direction, lightGeometry\(i\)\);\n    blocked[^}]*\}/, blocked('uLights', 'LIGHT_VEC4S', lights, true)],
-  ];
-}
 
 function option(argv: string[], name: string, fallback: string): string {
   const i = argv.indexOf(`--${name}`);
@@ -108,7 +93,11 @@ function variantSource(spec: string, root: URL): string {
   const [dir, ...patches] = spec.split('+');
   const base = new URL(dir.endsWith('/') ? dir : `${dir}/`, root);
   const chunks = CHUNKS.map((name) => ({ name, source: readFileSync(new URL(name, base), 'utf8') }));
-  let text = buildShader(chunks, { ...layoutDefines(), LOW_DISCREPANCY: 1, RUSSIAN_ROULETTE: 0, CAUSTIC_GUIDES: 1, CAUSTIC_GUIDING: 1, GUIDE_ITERATIONS: 1 }).text;
+  // One caustic guide, as on the seed scene. CAUSTIC_GUIDING and
+  // GUIDE_ITERATIONS are what copies of the shaders older than
+  // CAUSTIC_GUIDES expect, so they can still be A/B'd.
+  const defines = { ...layoutDefines(), LOW_DISCREPANCY: 1, RUSSIAN_ROULETTE: 0, CAUSTIC_GUIDES: 1, CAUSTIC_GUIDING: 1, GUIDE_ITERATIONS: 1 };
+  let text = buildShader(chunks, defines).text;
   for (const p of patches) {
     const edits = PATCHES[p];
     if (!edits) throw new Error(`unknown patch ${p}`);

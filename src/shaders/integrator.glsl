@@ -4,10 +4,11 @@
 // Shaped for SwiftShader, which runs the lanes of a pixel quad in lock step
 // and executes both sides of every branch under lane masks: only a loop's
 // back edge really skips work (when no lane continues). So the loop body is
-// one scattering event that ends by finding the next vertex, adding what
-// it emits and deciding there whether the path goes on, so that the back
-// edge is taken only when some lane has a surface to scatter from. A path that escapes to the sky costs one intersection, not
-// one more (masked) pass through the whole body (measured: bench/shader-ab.ts).
+// one scattering event that ends by finding the next vertex, adding what it
+// emits and deciding there whether the path goes on, so that the back edge
+// is taken only when some lane has a surface to scatter from. A path that
+// escapes to the sky costs one intersection, not one more (masked) pass
+// through the whole body (measured: bench/shader-ab.ts).
 //
 // Russian roulette is a switch (RUSSIAN_ROULETTE, PathTracerOptions), off by
 // default: a loop iterates until its last lane is done, so terminating a path

@@ -17,8 +17,9 @@ bool isValidRadiance(vec3 c) {
 }
 
 void accumulate(inout vec4 sum, vec3 radiance) {
-  sum.rgb += isValidRadiance(radiance) ? radiance : vec3(0.0);
-  sum.a += isValidRadiance(radiance) ? 0.0 : 1.0;
+  bool valid = isValidRadiance(radiance);
+  sum.rgb += valid ? radiance : vec3(0.0);
+  sum.a += valid ? 0.0 : 1.0;
 }
 
 // SwiftShader runs the lanes of a pixel quad in lock step and executes a

@@ -76,8 +76,7 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   hit.index = isLight ? light : sphere;
 
   // Both surfaces are derived and the right one selected (see sphereHitT).
-  vec4 geometry = sceneData(isLight ? BLOCK_LIGHTS + light * LIGHT_VEC4S + LIGHT_GEOMETRY
-                                    : BLOCK_SPHERES + sphere * SPHERE_VEC4S + SPHERE_GEOMETRY);
+  vec4 geometry = sceneData(isLight ? lightTexel(light, LIGHT_GEOMETRY) : sphereTexel(sphere, SPHERE_GEOMETRY));
   vec3 p = origin + hit.t * direction;
   vec3 sphereNormal = normalize(p - geometry.xyz);
   vec3 spherePosition = geometry.xyz + geometry.w * sphereNormal;  // re-projected onto the surface

@@ -24,21 +24,18 @@ int sphereCount() { return int(uCounts.x); }
 int lightCount() { return int(uCounts.y); }
 bool groundEnabled() { return uCounts.z > 0.5; }
 
-vec4 sphereGeometry(int i) { return sceneData(BLOCK_SPHERES + i * SPHERE_VEC4S + SPHERE_GEOMETRY); }
-Material sphereMaterial(int i) {
-  vec4 m = sceneData(BLOCK_SPHERES + i * SPHERE_VEC4S + SPHERE_MATERIAL);
-  return Material(m.rgb, m.a);
-}
-vec4 lightGeometry(int i) { return sceneData(BLOCK_LIGHTS + i * LIGHT_VEC4S + LIGHT_GEOMETRY); }
-vec3 lightRadiance(int i) { return sceneData(BLOCK_LIGHTS + i * LIGHT_VEC4S + LIGHT_RADIANCE).rgb; }
+// Texels (sceneData) of a sphere's or a light's fields.
+int sphereTexel(int i, int field) { return BLOCK_SPHERES + i * SPHERE_VEC4S + field; }
+int lightTexel(int i, int field) { return BLOCK_LIGHTS + i * LIGHT_VEC4S + field; }
+
+vec4 sphereGeometry(int i) { return sceneData(sphereTexel(i, SPHERE_GEOMETRY)); }
+vec4 lightGeometry(int i) { return sceneData(lightTexel(i, LIGHT_GEOMETRY)); }
+vec3 lightRadiance(int i) { return sceneData(lightTexel(i, LIGHT_RADIANCE)).rgb; }
 float groundHeight() { return uGround[GROUND_GEOMETRY].x; }
-Material groundMaterial() {
-  vec4 m = uGround[GROUND_MATERIAL];
-  return Material(m.rgb, m.a);
-}
+
 // The material of a sphere or, when `isSphere` is false, of the ground
 // (selected as vectors: GLSL ES has no ?: on structures).
 Material surfaceMaterial(bool isSphere, int sphere) {
-  vec4 m = isSphere ? sceneData(BLOCK_SPHERES + sphere * SPHERE_VEC4S + SPHERE_MATERIAL) : uGround[GROUND_MATERIAL];
+  vec4 m = isSphere ? sceneData(sphereTexel(sphere, SPHERE_MATERIAL)) : uGround[GROUND_MATERIAL];
   return Material(m.rgb, m.a);
 }
