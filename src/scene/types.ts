@@ -69,3 +69,28 @@ export interface Scene {
   lights: Light[];
   spheres: Sphere[];
 }
+
+/**
+ * An equirectangular (latitude-longitude) environment image of linear RGB
+ * radiance: `rgb` holds width * height * 3 floats, row 0 at the top (the
+ * zenith), each row from u = 0 (left) to u = 1. Decoded from `.hdr`/`.exr`
+ * by src/scene/envmap/; every value finite and >= 0.
+ */
+export interface EnvironmentImage {
+  width: number;
+  height: number;
+  rgb: Float32Array;
+}
+
+/**
+ * The triangles of one mesh file in its own object space (transforms of the
+ * file itself, such as glTF nodes, already applied). `positions` and
+ * `normals` hold 3 floats per vertex; `indices` 3 vertex indices per
+ * triangle. `normals` is null when the file does not give a normal for every
+ * corner (the mesh is then flat-shaded).
+ */
+export interface TriangleMesh {
+  positions: Float32Array;
+  normals: Float32Array | null;
+  indices: Uint32Array;
+}
