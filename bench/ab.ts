@@ -7,7 +7,7 @@
 import { readFileSync } from 'node:fs';
 import { relativeMse, type LinearImage } from '../src/node/imageMetrics';
 import { openRenderSession, type LoadOptions } from '../src/node/session';
-import type { SamplerKind } from '../src/render/layout';
+import type { SamplerKind } from '../src/render/sampling';
 import { parseSceneText } from '../src/scene/schema';
 import { decodePfm } from '../src/cli/pfm';
 import { projectRoot, renderFor } from './common';

@@ -16,7 +16,7 @@ import path from 'node:path';
 import { decodePfm } from '../src/cli/pfm';
 import { relativeMse, type LinearImage } from '../src/node/imageMetrics';
 import { openRenderSession, type LoadOptions, type RenderSession } from '../src/node/session';
-import type { SamplerKind } from '../src/render/layout';
+import type { SamplerKind } from '../src/render/sampling';
 import { toMitsubaXml } from '../src/scene/mitsuba';
 import { parseSceneText } from '../src/scene/schema';
 import type { Scene } from '../src/scene/types';

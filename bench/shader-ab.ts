@@ -15,41 +15,27 @@ import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { relativeMse, type LinearImage } from '../src/node/imageMetrics';
 import { openRenderSession, type LoadOptions } from '../src/node/session';
-import { layoutDefines } from '../src/render/layout';
+import { TRACE_CHUNKS, featureDefines, sceneDefines } from '../src/render/passes/trace';
 import { buildShader } from '../src/render/gl/shaderSource';
 import { parseSceneText } from '../src/scene/schema';
 import { decodePfm } from '../src/cli/pfm';
 import { projectRoot, renderFor } from './common';
 import { downsample } from './run';
 
-const CHUNKS = [
-  'common/math.glsl',
-  'common/rng.glsl',
-  'common/sampling.glsl',
-  'scene/layout.glsl',
-  'scene/intersect.glsl',
-  'bsdf/ggx.glsl',
-  'bsdf/material.glsl',
-  'lights/caustic_guide.glsl',
-  'lights/sphere_light.glsl',
-  'camera.glsl',
-  'integrator.glsl',
-  'trace.frag',
-];
 
 /** Named text edits for cost-share measurements: [search, replacement] pairs. */
 const PATCHES: Record<string, [string | RegExp, string][]> = {
   // NEE's shadow ray loop removed (light always visible).
-  noShadow: [['if (occluded(origin, wiWorld, tLight, light)) return vec3(0.0);', '']],
+  noShadow: [['if (occluded(origin, light.direction, light.distance, light.skipSphere)) return vec3(0.0);', '']],
   // The whole NEE call removed.
   noNee: [['vec3 direct = sampleDirectLight(hit, frame, wo, material, uLight.xyz);', 'vec3 direct = vec3(0.0);']],
   // BSDF evaluation in NEE replaced by a constant.
-  noNeeEval: [['vec3 f = evalMaterial(m, wo, wi, bsdfPdf);', 'vec3 f = vec3(wi.z); bsdfPdf = wi.z;']],
+  noNeeEval: [['vec3 f = bsdfEval(m, wo, wi, bsdfPdf);', 'vec3 f = vec3(wi.z); bsdfPdf = wi.z;']],
   // BSDF sampling replaced by a trivial cosine-ish direction.
   noBsdfSample: [['BsdfSample bs = sampleGuided(material, frame, wo, uBsdf, uLight.w);',
     'BsdfSample bs = BsdfSample(normalize(vec3(uBsdf.xy - 0.5, 1.0)), material.color, 1.0, false, true);']],
   // Light-cone construction + cone sampling replaced by the axis.
-  noCone: [['vec3 wiWorld = basisAround(cone.axis) * sampleUniformCone(u.xy, cone.oneMinusCosMax);', 'vec3 wiWorld = cone.axis;']],
+  noCone: [['vec3 wi = basisAround(cone.axis) * sampleUniformCone(u, cone.oneMinusCosMax);', 'vec3 wi = cone.axis;']],
   // RNG hashing replaced by a cheap non-random function.
   noRng: [[/uvec4 h = pcg4d\(uvec4\(rngPixelKey, rngSampleIndex, rngDimension\)\);/, 'uvec4 h = uvec4(rngPixelKey, rngSampleIndex, rngDimension) * 2654435761u;']],
   // Closest-hit loop over spheres removed (lights and ground remain).
@@ -92,11 +78,12 @@ function variantSource(spec: string, root: URL): string {
   if (spec.endsWith('.frag')) return readFileSync(spec, 'utf8'); // a whole trace shader, e.g. a hand-edited dump
   const [dir, ...patches] = spec.split('+');
   const base = new URL(dir.endsWith('/') ? dir : `${dir}/`, root);
-  const chunks = CHUNKS.map((name) => ({ name, source: readFileSync(new URL(name, base), 'utf8') }));
-  // One caustic guide, as on the seed scene. CAUSTIC_GUIDING and
-  // GUIDE_ITERATIONS are what copies of the shaders older than
-  // CAUSTIC_GUIDES expect, so they can still be A/B'd.
-  const defines = { ...layoutDefines(), LOW_DISCREPANCY: 1, RUSSIAN_ROULETTE: 0, CAUSTIC_GUIDES: 1, CAUSTIC_GUIDING: 1, GUIDE_ITERATIONS: 1 };
+  // The generated chunks come from this build; every other chunk from the variant's directory.
+  const chunks = TRACE_CHUNKS.map((chunk) =>
+    chunk.name.startsWith('generated/') ? chunk : { name: chunk.name, source: readFileSync(new URL(chunk.name, base), 'utf8') },
+  );
+  // One caustic guide, no glass: the seed scene's program.
+  const defines = { ...sceneDefines(), ...featureDefines({ guides: 1, dielectric: false }) };
   let text = buildShader(chunks, defines).text;
   for (const p of patches) {
     const edits = PATCHES[p];

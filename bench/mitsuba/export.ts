@@ -17,7 +17,7 @@ function main(argv: string[]): void {
   for (let i = 0; i < argv.length; i++) {
     const arg = argv[i];
     const key = { '--spp': 'spp', '--seed': 'seed', '--width': 'width', '--height': 'height' }[arg] as
-      | keyof MitsubaExportOptions
+      | 'spp' | 'seed' | 'width' | 'height'
       | undefined;
     if (key) {
       const value = Number(argv[++i]);

@@ -123,7 +123,7 @@ export class App {
     const { target } = this.scene.camera;
     const floor = this.scene.ground ? this.scene.ground.height : target[1] - 0.5;
     this.edit((s) =>
-      s.spheres.push({ center: [target[0], floor + 0.5, target[2]], radius: 0.5, material: { color: [0.8, 0.8, 0.8], roughness: 0.5 } }),
+      s.spheres.push({ center: [target[0], floor + 0.5, target[2]], radius: 0.5, material: { type: 'standard', color: [0.8, 0.8, 0.8], roughness: 0.5 } }),
     );
     this.select({ kind: 'sphere', index: this.scene.spheres.length - 1 });
   }

@@ -4,13 +4,13 @@
  * current values. Scene colors are linear; the pickers show sRGB hex.
  */
 import GUI, { type Controller } from 'lil-gui';
-import { TONEMAPS } from '../render/layout';
+import { TONEMAPS } from '../render/toneMaps';
 import { hexToLinear, linearToHex } from '../scene/color';
 import { MAX_BOUNCES } from '../scene/limits';
 import type { Ground, Material } from '../scene/types';
 import type { App } from './App';
 
-const DEFAULT_GROUND: Ground = { height: 0, material: { color: [0.8, 0.8, 0.8], roughness: 1 } };
+const DEFAULT_GROUND: Ground = { height: 0, material: { type: 'standard', color: [0.8, 0.8, 0.8], roughness: 1 } };
 
 export class Panel {
   readonly gui: GUI;
@@ -98,14 +98,19 @@ export class Panel {
   private buildSky(): void {
     const app = this.app;
     const folder = this.gui.addFolder('Sky');
-    const env = () => (app.scene.environment ??= { color: [0, 0, 0], intensity: 0 });
+    // The constant sky; a map environment is replaced by a constant one when its color is set.
+    const env = () => {
+      const current = app.scene.environment;
+      if (current && 'color' in current) return current;
+      return (app.scene.environment = { color: [0, 0, 0], intensity: current?.intensity ?? 0 });
+    };
     this.tracked(folder.addColor({
-      get color() { return linearToHex(app.scene.environment?.color ?? [0, 0, 0]); },
+      get color() { const e = app.scene.environment; return linearToHex(e && 'color' in e ? e.color : [0, 0, 0]); },
       set color(v: string) { app.live(() => (env().color = hexToLinear(v))); },
     }, 'color'));
     this.tracked(folder.add({
       get intensity() { return app.scene.environment?.intensity ?? 0; },
-      set intensity(v: number) { app.live(() => (env().intensity = v)); },
+      set intensity(v: number) { app.live((sc) => { if (sc.environment) sc.environment.intensity = v; else env().intensity = v; }); },
     }, 'intensity', 0, 5, 0.01));
     folder.close();
   }

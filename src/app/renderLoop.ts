@@ -6,7 +6,7 @@
  * 30 fps while a fast GPU gets many samples per frame.
  */
 import type { PathTracer } from '../render/PathTracer';
-import type { ToneMap } from '../render/layout';
+import type { ToneMap } from '../render/toneMaps';
 
 export interface ViewSettings {
   exposure: number;

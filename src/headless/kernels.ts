@@ -7,8 +7,8 @@
 import kernelFrag from '../shaders/test/kernels.frag?raw';
 import { Program } from '../render/gl/program';
 import { FloatTarget } from '../render/gl/targets';
-import { BLOCK, layoutDefines } from '../render/layout';
-import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/passes/trace';
+import { BLOCK_VEC4S } from '../render/layout/scene';
+import { SCENE_CHUNKS, VERTEX_CHUNKS, featureDefines, sceneDefines } from '../render/passes/trace';
 import { createContext } from '../render/gl/context';
 
 export const KERNELS = ['sampleCone', 'sampleMaterial', 'pdfMaterial'] as const;
@@ -18,7 +18,7 @@ export interface KernelRequest {
   kernel: KernelName;
   width: number;
   height: number;
-  /** Kernel parameters: cone: [oneMinusCosMax]; material: [roughness]. */
+  /** Kernel parameters: cone: [oneMinusCosMax]; material: [roughness, ior, type (0 standard, 1 dielectric)]. */
   params: number[];
   /** Outgoing direction (local frame) for the material kernels. */
   wo?: [number, number, number];
@@ -30,14 +30,14 @@ let context: { gl: WebGL2RenderingContext; program: Program } | null = null;
 function kernelContext() {
   if (!context) {
     const gl = createContext(new OffscreenCanvas(1, 1), false);
-    const defines = { ...layoutDefines(), CAUSTIC_GUIDES: 0, ...Object.fromEntries(KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i])) };
+    const defines = { ...sceneDefines(), ...featureDefines({ guides: 0, dielectric: true }), ...Object.fromEntries(KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i])) };
     const program = new Program(gl, VERTEX_CHUNKS, [...SCENE_CHUNKS, { name: 'test/kernels.frag', source: kernelFrag }], defines);
     gl.bindVertexArray(gl.createVertexArray());
     // The scene chunks declare the SceneBlock uniform block; a draw with an
     // active block and no buffer bound is an error, so bind an empty scene.
     const sceneBuffer = gl.createBuffer();
     gl.bindBuffer(gl.UNIFORM_BUFFER, sceneBuffer);
-    gl.bufferData(gl.UNIFORM_BUFFER, BLOCK.size * 16, gl.STATIC_DRAW);
+    gl.bufferData(gl.UNIFORM_BUFFER, BLOCK_VEC4S * 16, gl.STATIC_DRAW);
     const blockIndex = gl.getUniformBlockIndex(program.handle, 'SceneBlock');
     if (blockIndex !== gl.INVALID_INDEX) gl.uniformBlockBinding(program.handle, blockIndex, 0);
     gl.bindBufferBase(gl.UNIFORM_BUFFER, 0, sceneBuffer);

@@ -5,13 +5,12 @@
  */
 import { PathTracer } from '../render/PathTracer';
 import type { DisplayOptions } from '../render/passes/display';
-import type { SamplerKind } from '../render/layout';
+import type { SamplerKind } from '../render/sampling';
 import type { Scene } from '../scene/types';
 import { runKernel, type KernelRequest } from './kernels';
 import { createContext } from '../render/gl/context';
 import { Program, ShaderCompileError } from '../render/gl/program';
-import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/passes/trace';
-import { layoutDefines } from '../render/layout';
+import { SCENE_CHUNKS, VERTEX_CHUNKS, sceneDefines } from '../render/passes/trace';
 
 export interface LoadOptions {
   width: number;
@@ -103,7 +102,7 @@ const api: HeadlessApi = {
   compileLog(name, source) {
     const gl = createContext(new OffscreenCanvas(1, 1), false);
     try {
-      new Program(gl, VERTEX_CHUNKS, [...SCENE_CHUNKS.slice(0, 3), { name, source }], layoutDefines()).dispose();
+      new Program(gl, VERTEX_CHUNKS, [...SCENE_CHUNKS.slice(0, 3), { name, source }], sceneDefines()).dispose();
       return null;
     } catch (error) {
       if (error instanceof ShaderCompileError) return error.message;

@@ -7,7 +7,7 @@ import { existsSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { chromium, type Browser, type Page } from 'playwright-core';
 import type { DisplayOptions } from '../render/passes/display';
-import { TONEMAPS } from '../render/layout';
+import { TONEMAPS } from '../render/toneMaps';
 import type { Scene } from '../scene/types';
 import type { HeadlessApi, LoadOptions } from '../headless/main';
 import type { KernelRequest } from '../headless/kernels';

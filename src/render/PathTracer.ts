@@ -13,7 +13,7 @@ import { type AnyCanvas, createContext, rendererInfo, requireFloatTargets } from
 import { PingPong } from './gl/targets';
 import { DisplayPass, type DisplayOptions } from './passes/display';
 import { TracePass } from './passes/trace';
-import type { SamplerKind } from './layout';
+import type { SamplerKind } from './sampling';
 
 export interface PathTracerOptions {
   /** Render resolution; defaults to the scene's image size. */

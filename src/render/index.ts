@@ -1,6 +1,6 @@
 export { PathTracer, type PathTracerOptions } from './PathTracer';
 export type { DisplayOptions } from './passes/display';
-export { TONEMAPS, type ToneMap } from './layout';
+export { TONEMAPS, type ToneMap } from './toneMaps';
 export { ShaderCompileError } from './gl/program';
 export { WebGLUnavailableError } from './gl/context';
 export { packScene } from './packScene';

@@ -1,61 +1,124 @@
 /**
- * Scene -> the Float32Array behind the std140 `SceneBlock` uniform block.
+ * Scene -> the packed arrays the shaders read (layout: layout/scene.ts).
  * Pure: no GL, so it is unit-tested directly.
+ *
+ * Each `lights` entry becomes a sphere with an emitter-only material; every
+ * sphere whose material emits is also an emitter. Light sampling picks an
+ * emitter in proportion to its power through an alias table.
  */
-import type { Material, Scene } from '../scene/types';
+import type { Material, Scene, Vec3 } from '../scene/types';
+import { buildAliasTable } from './aliasTable';
+import { selectCausticGuides, type GuideSphere } from './causticGuides';
 import {
-  BLOCK, GROUND_FIELDS, GUIDE_FIELDS, GUIDE_MIN_SPECULAR, GUIDE_VEC4S, LIGHT_FIELDS, LIGHT_VEC4S, MAX_GUIDES, SMOOTH_ALPHA, SPHERE_FIELDS, SPHERE_VEC4S,
-} from './layout';
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MATERIAL_TYPES, SECTIONS, SPHERE,
+} from './layout/scene';
+import { packRecord } from './layout/records';
 
-export function packScene(scene: Scene): Float32Array {
-  const data = new Float32Array(BLOCK.size * 4);
-  const put = (vec4: number, values: readonly number[]) => data.set(values, vec4 * 4);
-  const material = (m: Material) => [...m.color, m.roughness];
+/** Which optional shader code a scene needs (one program per combination). */
+export interface SceneFeatures {
+  /** Caustic guides compiled in (0..MAX_GUIDES). */
+  guides: number;
+  dielectric: boolean;
+}
 
-  scene.spheres.forEach((sphere, i) => {
-    const base = BLOCK.spheres + i * SPHERE_VEC4S;
-    put(base + SPHERE_FIELDS.GEOMETRY, [...sphere.center, sphere.radius]);
-    put(base + SPHERE_FIELDS.MATERIAL, material(sphere.material));
+export interface PackedScene {
+  /** The data texture: DATA_TEXELS RGBA32F texels. */
+  data: Float32Array;
+  /** The uniform block: BLOCK_VEC4S vec4s. */
+  block: Float32Array;
+  features: SceneFeatures;
+}
+
+interface SceneSphere extends GuideSphere {
+  material: Material | 'emitterOnly';
+  radiance: Vec3;
+}
+
+export function packScene(scene: Scene): PackedScene {
+  const data = new Float32Array(DATA_TEXELS * 4);
+  const block = new Float32Array(BLOCK_VEC4S * 4);
+  const materials: Float32Array[] = [];
+  const addMaterial = (record: Float32Array) => materials.push(record) - 1;
+
+  const spheres = sceneSpheres(scene);
+  const emitters = spheres.flatMap((s, index) => (power(s) > 0 ? [{ index, sphere: s }] : []));
+  const alias = buildAliasTable(emitters.map((e) => power(e.sphere)));
+  const emitterPdf = new Map(emitters.map((e, i) => [e.index, alias.pdf[i]]));
+
+  spheres.forEach((sphere, i) => {
+    const material = addMaterial(sphere.material === 'emitterOnly' ? emitterOnlyRecord(sphere.radiance) : materialRecord(sphere.material));
+    const record = packRecord(SPHERE, { center: sphere.center, radius: sphere.radius, material, emitterPdf: emitterPdf.get(i) ?? 0 });
+    data.set(record, (SECTIONS.spheres + i * SPHERE.texels) * 4);
   });
-  scene.lights.forEach((light, i) => {
-    const base = BLOCK.lights + i * LIGHT_VEC4S;
-    put(base + LIGHT_FIELDS.GEOMETRY, [...light.position, light.radius]);
-    put(base + LIGHT_FIELDS.RADIANCE, light.color.map((c) => c * light.intensity));
+  emitters.forEach(({ index, sphere }, i) => {
+    const record = packRecord(EMITTER, {
+      center: sphere.center,
+      radius: sphere.radius,
+      radiance: sphere.radiance,
+      pdf: alias.pdf[i],
+      kind: EMITTER_KINDS.sphere,
+      primitive: index,
+    });
+    data.set(record, (SECTIONS.emitters + i * EMITTER.texels) * 4);
+    const choice = packRecord(EMITTER_CHOICE, { aliasThreshold: alias.threshold[i], alias: alias.alias[i] });
+    data.set(choice, (SECTIONS.emitterChoices + i * EMITTER_CHOICE.texels) * 4);
   });
-  if (scene.ground) {
-    put(BLOCK.ground + GROUND_FIELDS.GEOMETRY, [scene.ground.height, 0, 0, 0]);
-    put(BLOCK.ground + GROUND_FIELDS.MATERIAL, material(scene.ground.material));
-  }
+  const groundMaterial = scene.ground ? addMaterial(materialRecord(scene.ground.material)) : 0;
+  materials.forEach((record, i) => data.set(record, (SECTIONS.materials + i * MATERIAL.texels) * 4));
+
+  const guides = selectCausticGuides(spheres);
   const environment = scene.environment;
-  if (environment) put(BLOCK.environment, environment.color.map((c) => c * environment.intensity));
-  const guides = causticGuides(scene);
+  const header = packRecord(HEADER, {
+    sphereCount: spheres.length,
+    emitterCount: emitters.length,
+    groundEnabled: scene.ground ? 1 : 0,
+    guideCount: guides.length,
+    groundHeight: scene.ground?.height ?? 0,
+    groundMaterial,
+    environment: environment && 'color' in environment ? scale(environment.color, environment.intensity) : [0, 0, 0],
+  });
+  block.set(header, 0);
   // The guides' geometry itself, not indices: the shader reads it with
   // constant indices, which SwiftShader does without a texture fetch.
-  guides.forEach(([sphere, light], i) => {
-    const { center, radius } = scene.spheres[sphere];
-    const { position, radius: lightRadius } = scene.lights[light];
-    put(BLOCK.guides + i * GUIDE_VEC4S + GUIDE_FIELDS.MIRROR, [...center, radius]);
-    put(BLOCK.guides + i * GUIDE_VEC4S + GUIDE_FIELDS.LIGHT, [...position, lightRadius]);
+  guides.forEach(([mirror, light], i) => {
+    const base = (HEADER.texels + i * GUIDE_VEC4S) * 4;
+    block.set([...spheres[mirror].center, spheres[mirror].radius], base + GUIDE_FIELDS.MIRROR * 4);
+    block.set([...spheres[light].center, spheres[light].radius], base + GUIDE_FIELDS.LIGHT * 4);
   });
-  put(BLOCK.counts, [scene.spheres.length, scene.lights.length, scene.ground ? 1 : 0, guides.length]);
-  return data;
+  const dielectric = spheres.some((s) => s.material !== 'emitterOnly' && s.material.type === 'dielectric');
+  return { data, block, features: { guides: guides.length, dielectric } };
 }
 
-/**
- * The (mirror sphere, light) pairs worth guiding towards, brightest first:
- * spheres whose specular lobe is an ideal mirror (alpha below SMOOTH_ALPHA)
- * with most of the weight, paired with every light, ranked by the light's
- * power times the mirror's size. At most MAX_GUIDES.
- */
-export function causticGuides(scene: Scene): [number, number][] {
-  const pairs: { pair: [number, number]; score: number }[] = [];
-  scene.spheres.forEach((sphere, s) => {
-    const r = sphere.material.roughness;
-    if (r * r >= SMOOTH_ALPHA || 1 - r < GUIDE_MIN_SPECULAR) return;
-    scene.lights.forEach((light, l) => {
-      const power = light.intensity * Math.max(...light.color) * light.radius ** 2;
-      if (power > 0) pairs.push({ pair: [s, l], score: power * sphere.radius ** 2 * Math.max(...sphere.material.color) });
-    });
-  });
-  return pairs.sort((a, b) => b.score - a.score).slice(0, MAX_GUIDES).map((p) => p.pair);
+/** The scene's spheres in shader order: `spheres`, then `lights` as emitter-only spheres. */
+function sceneSpheres(scene: Scene): SceneSphere[] {
+  return [
+    ...scene.spheres.map((s) => ({ center: s.center, radius: s.radius, material: s.material, radiance: emittedRadiance(s.material) })),
+    ...scene.lights.map((l) => ({ center: l.position, radius: l.radius, material: 'emitterOnly' as const, radiance: scale(l.color, l.intensity) })),
+  ];
 }
+
+function materialRecord(m: Material): Float32Array {
+  return packRecord(MATERIAL, {
+    color: m.color,
+    roughness: m.roughness,
+    emission: emittedRadiance(m),
+    type: MATERIAL_TYPES[m.type],
+    ior: m.type === 'dielectric' ? m.ior : 1,
+  });
+}
+
+/** A `lights` entry: emits, reflects nothing. */
+function emitterOnlyRecord(radiance: Vec3): Float32Array {
+  return packRecord(MATERIAL, { color: [0, 0, 0], roughness: 1, emission: radiance, type: MATERIAL_TYPES.emitterOnly, ior: 1 });
+}
+
+function emittedRadiance(m: Material): Vec3 {
+  return m.emission ? scale(m.emission.color, m.emission.intensity) : [0, 0, 0];
+}
+
+/** Emitted power up to constant factors (pi * area * mean radiance). */
+function power(s: SceneSphere): number {
+  return (s.radiance[0] + s.radiance[1] + s.radiance[2]) * s.radius * s.radius;
+}
+
+const scale = (v: Vec3, s: number): Vec3 => [v[0] * s, v[1] * s, v[2] * s];

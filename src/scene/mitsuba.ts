@@ -1,6 +1,6 @@
 /**
- * Export a normalized scene as a Mitsuba 3 XML scene (scene format version 1
- * -> `<scene version="3.0.0">`). Used by `pathtrace export-mitsuba` and by the
+ * Export a normalized scene as a Mitsuba 3 XML scene (scene format versions
+ * 1 and 2 -> `<scene version="3.0.0">`). Used by `pathtrace export-mitsuba` and by the
  * benchmark, which renders the same scene with Mitsuba at equal time.
  *
  * Pure: no DOM, no Node APIs. The mapping, and why each choice matches the
@@ -14,16 +14,19 @@
  *   inside the pixel, the format's pixel definition).
  * - integrator: `path`, max_depth = maxBounces + 1, rr_depth > max_depth so
  *   Russian roulette never runs (the references were rendered that way).
- * - material: `blendbsdf` with weight = roughness, first child the specular
- *   lobe, second `diffuse`: Mitsuba evaluates (1 - w) * first + w * second, which
- *   is the format's (1 - r) * Specular + r * Lambert. Specular is `conductor`
- *   (r = 0) or `roughconductor` with GGX, alpha = r^2, and material="none"
- *   (reflectance 1 at all angles = no Fresnel) tinted by specular_reflectance.
- *   Pure r = 0 and r = 1 skip the blend. Mitsuba's BSDFs are one-sided (black
- *   from behind); we wrap them in `twosided` so the ground seen from below and
- *   a sphere seen from inside shade like their front, as a renderer that
- *   flips the normal towards the ray does. For the fixtures (camera outside
- *   every sphere, above the ground) this changes nothing.
+ * - standard material: `blendbsdf` with weight = roughness, first child the
+ *   specular lobe, second `diffuse`: Mitsuba evaluates (1 - w) * first + w *
+ *   second, which is the format's (1 - r) * Specular + r * Lambert. Specular
+ *   is `conductor` (r = 0) or `roughconductor` with GGX, alpha = r^2, and
+ *   material="none" (reflectance 1 at all angles = no Fresnel) tinted by
+ *   specular_reflectance. Pure r = 0 and r = 1 skip the blend. One-sided, as
+ *   the format says for spheres and the ground (Mitsuba's default).
+ * - dielectric: `dielectric` (r = 0) or `roughdielectric` (GGX, alpha = r^2,
+ *   visible normals), int_ior = ior, ext_ior = 1, specular_transmittance =
+ *   color.
+ * - emission: an `area` emitter on the shape.
+ * - environment map: `envmap` with scale = intensity, rotated about +y; the
+ *   file name as `environmentMapPath` gives it (default: as in the scene).
  * - lights: `sphere` with an `area` emitter (one-sided, emitting along the
  *   outward normal: the format's "all outward directions") and a black
  *   `diffuse` BSDF (lights reflect nothing).
@@ -38,7 +41,7 @@
  * - environment: `constant` emitter, omitted when null or black.
  */
 import { cameraFrame } from './camera';
-import type { Camera, Material, Scene, Vec3 } from './types';
+import type { Camera, DielectricMaterial, Material, Scene, StandardMaterial, Vec3 } from './types';
 
 export interface MitsubaExportOptions {
   /** Samples per pixel written into the sampler (default 256). */
@@ -48,6 +51,8 @@ export interface MitsubaExportOptions {
   height?: number;
   /** Seed of the `independent` sampler (default 0). */
   seed?: number;
+  /** The file name to write for `environment.map` (e.g. resolved against the scene file). Default: as written. */
+  environmentMapPath?: (map: string) => string;
 }
 
 /** Side of the square that stands in for the infinite ground plane. */
@@ -147,8 +152,24 @@ function sensor(camera: Camera, width: number, height: number, spp: number, seed
   ]);
 }
 
-/** The format's material as a Mitsuba BSDF: (1 - r) * GGX conductor + r * Lambert. */
+/** The format's material as a Mitsuba BSDF. */
 function materialBsdf(material: Material): Node {
+  return material.type === 'dielectric' ? dielectricBsdf(material) : standardBsdf(material);
+}
+
+function dielectricBsdf(m: DielectricMaterial): Node {
+  const common = [float('int_ior', m.ior), float('ext_ior', 1), rgb('specular_transmittance', m.color)];
+  if (m.roughness === 0) return el('bsdf', { type: 'dielectric' }, common);
+  return el('bsdf', { type: 'roughdielectric' }, [
+    str('distribution', 'ggx'),
+    float('alpha', m.roughness * m.roughness),
+    el('boolean', { name: 'sample_visible', value: 'true' }),
+    ...common,
+  ]);
+}
+
+/** (1 - r) * GGX conductor + r * Lambert. */
+function standardBsdf(material: StandardMaterial): Node {
   const r = material.roughness;
   const diffuse = el('bsdf', { type: 'diffuse' }, [rgb('reflectance', material.color)]);
   const specular =
@@ -162,8 +183,28 @@ function materialBsdf(material: Material): Node {
           rgb('specular_reflectance', material.color),
         ]);
   // blendbsdf: weight 0 selects the first child, 1 the second.
-  const inner = r === 0 ? specular : r === 1 ? diffuse : el('bsdf', { type: 'blendbsdf' }, [float('weight', r), specular, diffuse]);
-  return el('bsdf', { type: 'twosided' }, [inner]);
+  return r === 0 ? specular : r === 1 ? diffuse : el('bsdf', { type: 'blendbsdf' }, [float('weight', r), specular, diffuse]);
+}
+
+/** The `area` emitter of an emissive material, if any. */
+function areaEmitter(material: Material): Node[] {
+  const e = material.emission;
+  const radiance = e ? scale3(e.color, e.intensity) : ([0, 0, 0] as Vec3);
+  return isBlack(radiance) ? [] : [el('emitter', { type: 'area' }, [rgb('radiance', radiance)])];
+}
+
+function environmentEmitter(scene: Scene, opts: MitsubaExportOptions): Node | null {
+  const e = scene.environment;
+  if (!e) return null;
+  if ('map' in e) {
+    return el('emitter', { type: 'envmap' }, [
+      str('filename', opts.environmentMapPath ? opts.environmentMapPath(e.map) : e.map),
+      float('scale', e.intensity),
+      el('transform', { name: 'to_world' }, [el('rotate', { y: '1', angle: num(e.rotation) })]),
+    ]);
+  }
+  const radiance = scale3(e.color, e.intensity);
+  return isBlack(radiance) ? null : el('emitter', { type: 'constant' }, [rgb('radiance', radiance)]);
 }
 
 function groundShape(scene: Scene): Node | null {
@@ -208,8 +249,8 @@ export function toMitsubaXml(scene: Scene, opts: MitsubaExportOptions = {}): str
     el('integrator', { type: 'path' }, [integer('max_depth', maxDepth), integer('rr_depth', maxDepth + 1)]),
     sensor(scene.camera, width, height, spp, seed, farClip(scene)),
   ];
-  const env = scene.environment && scale3(scene.environment.color, scene.environment.intensity);
-  if (env && !isBlack(env)) children.push(el('emitter', { type: 'constant' }, [rgb('radiance', env)]));
+  const env = environmentEmitter(scene, opts);
+  if (env) children.push(env);
   const ground = groundShape(scene);
   if (ground) children.push(ground);
   for (const light of scene.lights) {
@@ -229,11 +270,12 @@ export function toMitsubaXml(scene: Scene, opts: MitsubaExportOptions = {}): str
         point('center', sphere.center),
         float('radius', sphere.radius),
         materialBsdf(sphere.material),
+        ...areaEmitter(sphere.material),
       ]),
     );
   }
 
-  const out = ['<?xml version="1.0" encoding="utf-8"?>', '<!-- Exported by pathtrace from scene format version 1. -->'];
+  const out = ['<?xml version="1.0" encoding="utf-8"?>', `<!-- Exported by pathtrace from scene format version ${scene.version}. -->`];
   serialize(el('scene', { version: '3.0.0' }, children), 0, out);
   return out.join('\n') + '\n';
 }

@@ -3,7 +3,9 @@
  * test/fixtures/scenes/*.json (src must not depend on test/); the schema unit
  * test checks that the two stay identical.
  */
+import emissive from './presets/emissive.json';
 import furnace from './presets/furnace.json';
+import glass from './presets/glass.json';
 import glossy from './presets/glossy.json';
 import mirrors from './presets/mirrors.json';
 import seed from './presets/seed.json';
@@ -17,6 +19,8 @@ export const PRESETS: Readonly<Record<string, unknown>> = deepFreeze({
   glossy,
   mirrors,
   'small-light': smallLight,
+  glass,
+  emissive,
   furnace,
 });
 

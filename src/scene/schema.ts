@@ -1,5 +1,5 @@
 /**
- * Scene format version 1: validation and normalization of untrusted input.
+ * Scene format versions 1 and 2: validation and normalization of untrusted input.
  * docs/scene-format.md documents every rule enforced here; keep them in step.
  *
  * `parseScene` is the only way JSON becomes a `Scene`. It reports every
@@ -9,8 +9,9 @@
  */
 import * as z from 'zod';
 import { hexToLinear, isHexColor } from './color';
-import { MAX_BOUNCES, MAX_IMAGE_SIZE, MAX_LIGHTS, MAX_SCENE_BYTES, MAX_SPHERES } from './limits';
-import type { Camera, Environment, Ground, Light, Material, Scene, Sphere, Vec3 } from './types';
+import { MAX_BOUNCES, MAX_IMAGE_SIZE, MAX_LIGHTS, MAX_MESHES, MAX_SCENE_BYTES, MAX_SPHERES, MAX_IOR, MIN_IOR } from './limits';
+import type { Camera, Emission, Environment, Ground, Light, Material, Mesh, Scene, Sphere, Vec3 } from './types';
+import { versionIssues } from './version';
 
 /** Largest magnitude of a coordinate, a radius, a ground height or an aperture. */
 export const MAX_COORDINATE = 1e6;
@@ -73,7 +74,7 @@ const color = (channel: () => z.ZodNumber) =>
   );
 
 const white = (): Vec3 => [1, 1, 1];
-const defaultMaterial = (): Material => ({ color: [0.8, 0.8, 0.8], roughness: 1 });
+const defaultMaterial = (): Material => ({ type: 'standard', color: [0.8, 0.8, 0.8], roughness: 1 });
 
 /** Array of at most `max` items; the length is checked before any item is looked at. */
 const list = <T extends z.ZodType>(item: T, max: number, noun: string) =>
@@ -83,11 +84,52 @@ const list = <T extends z.ZodType>(item: T, max: number, noun: string) =>
     .pipe(z.array(item))
     .default(() => []);
 
-const materialShape = {
+const emissionShape = { color: color(intensity).default(white), intensity: intensity().default(1) };
+const emission = z.strictObject(emissionShape).optional();
+const standardShape = {
+  type: z.literal('standard').default('standard'),
   color: color(unit).default(() => defaultMaterial().color),
   roughness: unit().default(1),
+  emission,
 };
-const material = z.strictObject(materialShape).default(defaultMaterial);
+const dielectricShape = {
+  type: z.literal('dielectric'),
+  color: color(unit).default(white),
+  roughness: unit().default(0),
+  ior: z.number().min(MIN_IOR).max(MAX_IOR).default(1.5),
+  emission,
+};
+const MATERIAL_TYPES = ['standard', 'dielectric'] as const;
+/**
+ * One of several object schemas, chosen by looking at the value (a material
+ * by its `type`, an environment by its `map` key), so that errors name the
+ * fields of the chosen kind instead of a failed union.
+ */
+function oneOf<T>(choose: (value: Record<string, unknown>) => z.ZodType<T> | string) {
+  return z.custom<unknown>().transform((value, ctx): T => {
+    const schema = isRecord(value) ? choose(value) : (z.strictObject({}) as unknown as z.ZodType<T>);
+    if (typeof schema === 'string') {
+      ctx.issues.push({ code: 'custom', path: ['type'], message: schema, input: value });
+      return z.NEVER;
+    }
+    const result = schema.safeParse(value, { error: messageFor });
+    if (result.success) return result.data;
+    for (const issue of result.error.issues) ctx.issues.push({ ...issue, input: value } as never);
+    return z.NEVER;
+  });
+}
+/** A material by its `type` (absent = "standard"). */
+const material = oneOf<Material>((value) => {
+  if (value.type === undefined || value.type === 'standard') return z.strictObject(standardShape) as z.ZodType<Material>;
+  if (value.type === 'dielectric') return z.strictObject(dielectricShape) as z.ZodType<Material>;
+  return `must be ${MATERIAL_TYPES.map((t) => `"${t}"`).join(' or ')}`;
+}).default(defaultMaterial);
+/** Material keys by type, for typo suggestions. */
+const materialKeys = [...new Set([...Object.keys(standardShape), ...Object.keys(dielectricShape)])];
+
+function isRecord(value: unknown): value is Record<string, unknown> {
+  return typeof value === 'object' && value !== null && !Array.isArray(value);
+}
 
 const cameraShape = {
   position: point(),
@@ -127,7 +169,21 @@ const camera = z
 const imageShape = { width: integer(1, MAX_IMAGE_SIZE), height: integer(1, MAX_IMAGE_SIZE) };
 const renderShape = { maxBounces: integer(0, MAX_BOUNCES).default(6) };
 const environmentShape = { color: color(intensity).default(white), intensity: intensity().default(1) };
-const groundShape = { height: coordinate().default(0), material };
+const mapEnvironmentShape = {
+  map: z.string().min(1, 'must name a file').max(4096),
+  intensity: intensity().default(1),
+  rotation: z.number().min(-1e6).max(1e6).default(0),
+};
+/** The constant sky (version 1) or a map (version 2), told apart by the `map` key. */
+const environment = oneOf<Environment>(
+  (value) => ('map' in value ? z.strictObject(mapEnvironmentShape) : z.strictObject(environmentShape)) as z.ZodType<Environment>,
+);
+/** The ground is a plane: it has no inside (no glass) and emits nothing. */
+const groundMaterial = material.refine((m) => m.type === 'standard', {
+  path: ['type'],
+  message: 'must be "standard" on the ground (a plane has no inside)',
+}).refine((m) => m.emission === undefined, { path: ['emission'], message: 'is not allowed on the ground' });
+const groundShape = { height: coordinate().default(0), material: groundMaterial };
 const lightShape = {
   position: point(),
   radius: length(),
@@ -135,18 +191,38 @@ const lightShape = {
   intensity: intensity().default(1),
 };
 const sphereShape = { center: point(), radius: length(), material };
+const positiveScale = () => z.number().gt(0).max(MAX_COORDINATE);
+const meshShape = {
+  file: z.string().min(1, 'must name a file').max(4096),
+  material,
+  position: point().default((): Vec3 => [0, 0, 0]),
+  rotation: z
+    .tuple([z.number().min(-1e6).max(1e6), z.number().min(-1e6).max(1e6), z.number().min(-1e6).max(1e6)], {
+      error: shapeError('must be [x, y, z] in degrees'),
+    })
+    .default((): Vec3 => [0, 0, 0]),
+  scale: z
+    .union([positiveScale(), z.tuple([positiveScale(), positiveScale(), positiveScale()])], {
+      error: shapeError('must be a number > 0 or [x, y, z], each > 0'),
+    })
+    .default(1),
+};
 
 const sceneShape = {
-  version: z.literal(1, { error: shapeError('must be 1') }).default(1),
+  version: z.union([z.literal(1), z.literal(2)], { error: shapeError('must be 1 or 2') }).default(1),
   camera,
   image: z.strictObject(imageShape).default(() => ({ width: 640, height: 480 })),
   render: z.strictObject(renderShape).default(() => ({ maxBounces: 6 })),
-  environment: z.strictObject(environmentShape).nullable().default(null),
+  environment: environment.nullable().default(null),
   ground: z.strictObject(groundShape).nullable().default(null),
   lights: list(z.strictObject(lightShape), MAX_LIGHTS, 'lights'),
   spheres: list(z.strictObject(sphereShape), MAX_SPHERES, 'spheres'),
+  meshes: list(z.strictObject(meshShape), MAX_MESHES, 'meshes'),
 };
 const sceneSchema = z.strictObject(sceneShape);
+
+/** The JSON a scene document may hold (what `serializeScene` writes), derived from the schema. */
+export type SceneJson = z.input<typeof sceneSchema>;
 
 /** Keys allowed in each object, by path pattern ("[]" for any index), to suggest fixes for typos. */
 const KNOWN_KEYS: Record<string, readonly string[]> = {
@@ -154,12 +230,17 @@ const KNOWN_KEYS: Record<string, readonly string[]> = {
   camera: Object.keys(cameraShape),
   image: Object.keys(imageShape),
   render: Object.keys(renderShape),
-  environment: Object.keys(environmentShape),
+  environment: [...Object.keys(environmentShape), ...Object.keys(mapEnvironmentShape)],
   ground: Object.keys(groundShape),
-  'ground.material': Object.keys(materialShape),
+  'ground.material': materialKeys,
+  'ground.material.emission': Object.keys(emissionShape),
   'lights[]': Object.keys(lightShape),
   'spheres[]': Object.keys(sphereShape),
-  'spheres[].material': Object.keys(materialShape),
+  'spheres[].material': materialKeys,
+  'spheres[].material.emission': Object.keys(emissionShape),
+  'meshes[]': Object.keys(meshShape),
+  'meshes[].material': materialKeys,
+  'meshes[].material.emission': Object.keys(emissionShape),
 };
 
 function distance(a: Vec3, b: Vec3): number {
@@ -179,8 +260,11 @@ export function parseScene(input: unknown): Scene {
 export function safeParseScene(input: unknown): SafeParseResult {
   try {
     const result = sceneSchema.safeParse(input, { error: messageFor });
-    if (result.success) return { ok: true, scene: copyScene(result.data) };
-    return { ok: false, issues: toSceneIssues(result.error.issues) };
+    const versionProblems = versionIssues(input);
+    if (result.success && versionProblems.length === 0) return { ok: true, scene: copyScene(result.data) };
+    const issues = result.success ? [] : toSceneIssues(result.error.issues);
+    const seen = new Set(issues.map((issue) => issue.path));
+    return { ok: false, issues: [...versionProblems.filter((issue) => !seen.has(issue.path)), ...issues] };
   } catch (error) {
     // A last resort: inputs that are not plain JSON (throwing getters, proxies...).
     return { ok: false, issues: [{ path: '', message: `could not be read (${describe(error)})` }] };
@@ -298,17 +382,18 @@ function toSceneIssues(issues: readonly z.core.$ZodIssue[]): SceneIssue[] {
   const result: SceneIssue[] = [];
   const seen = new Set<string>();
   let dropped = 0;
-  const add = (path: string, message: string) => {
+  // The message is made only for issues that are shown (typo suggestions cost time).
+  const add = (path: string, message: () => string) => {
     if (seen.has(path)) return;
     seen.add(path);
-    if (result.length < MAX_REPORTED_ISSUES) result.push({ path, message });
+    if (result.length < MAX_REPORTED_ISSUES) result.push({ path, message: message() });
     else dropped++;
   };
   for (const issue of issues) {
     if (issue.code === 'unrecognized_keys') {
-      for (const key of issue.keys) add(formatPath([...issue.path, key]), unknownKeyMessage(issue.path, key));
+      for (const key of issue.keys) add(formatPath([...issue.path, key]), () => unknownKeyMessage(issue.path, key));
     } else {
-      add(formatPath(issue.path), issue.message);
+      add(formatPath(issue.path), () => issue.message);
     }
   }
   if (dropped > 0) result.push({ path: '', message: `${dropped} more problems not shown` });
@@ -319,6 +404,8 @@ function toSceneIssues(issues: readonly z.core.$ZodIssue[]): SceneIssue[] {
 function unknownKeyMessage(objectPath: readonly PropertyKey[], key: string): string {
   const pattern = formatPath(objectPath.map((part) => (typeof part === 'number' ? -1 : part)));
   const known = KNOWN_KEYS[pattern] ?? [];
+  // Keys of another material type or environment kind (such as "ior" on a standard material).
+  if (known.includes(key)) return 'unknown key for this type (see "type", or "map" for environments)';
   const wanted = simplify(key);
   if (wanted.length > 32) return 'unknown key';
   let best: string | undefined;
@@ -380,7 +467,7 @@ type ParsedScene = z.output<typeof sceneSchema>;
  */
 function copyScene(parsed: ParsedScene): Scene {
   return {
-    version: 1,
+    version: parsed.version,
     camera: copyCamera(parsed.camera),
     image: { width: parsed.image.width, height: parsed.image.height },
     render: { maxBounces: parsed.render.maxBounces },
@@ -388,6 +475,7 @@ function copyScene(parsed: ParsedScene): Scene {
     ground: parsed.ground && copyGround(parsed.ground),
     lights: parsed.lights.map(copyLight),
     spheres: parsed.spheres.map(copySphere),
+    meshes: parsed.meshes.map(copyMesh),
   };
 }
 
@@ -403,9 +491,25 @@ function copyCamera(c: Camera): Camera {
   return camera;
 }
 
-const copyEnvironment = (e: Environment): Environment => ({ color: vec(e.color), intensity: num(e.intensity) });
+const copyEnvironment = (e: Environment): Environment =>
+  'map' in e
+    ? { map: e.map, intensity: num(e.intensity), rotation: num(e.rotation) }
+    : { color: vec(e.color), intensity: num(e.intensity) };
 const copyGround = (g: Ground): Ground => ({ height: num(g.height), material: copyMaterial(g.material) });
-const copyMaterial = (m: Material): Material => ({ color: vec(m.color), roughness: num(m.roughness) });
+function copyMaterial(m: Material): Material {
+  const base = { color: vec(m.color), roughness: num(m.roughness) };
+  const copy: Material = m.type === 'dielectric' ? { type: 'dielectric', ...base, ior: m.ior } : { type: 'standard', ...base };
+  if (m.emission) copy.emission = copyEmission(m.emission);
+  return copy;
+}
+const copyEmission = (e: Emission): Emission => ({ color: vec(e.color), intensity: num(e.intensity) });
+const copyMesh = (m: z.output<z.ZodObject<typeof meshShape>>): Mesh => ({
+  file: m.file,
+  material: copyMaterial(m.material),
+  position: vec(m.position),
+  rotation: vec(m.rotation),
+  scale: typeof m.scale === 'number' ? [m.scale, m.scale, m.scale] : vec(m.scale),
+});
 const copyLight = (l: Light): Light => ({
   position: vec(l.position),
   radius: l.radius,

@@ -1,46 +1,28 @@
 /**
  * Scene -> scene-format JSON. The inverse of `parseScene`: every value is
  * written out explicitly (defaults included), colors as linear [r, g, b], so
- * `parseScene(serializeScene(s))` deep-equals `s` for every valid `s`.
+ * `parseScene(serializeScene(s))` deep-equals `s` for every valid `s`. A
+ * scene that uses nothing of version 2 is written as a version-1 document
+ * (no material `type`, no `meshes`), so it reads the same in older readers.
  */
-import type { Camera, Material, Scene, Vec3 } from './types';
+import type { SceneJson } from './schema';
+import type { Camera, Environment, Material, Mesh, Scene, Vec3 } from './types';
+import { requiredVersion } from './version';
 
-export interface MaterialJson {
-  color: Vec3;
-  roughness: number;
-}
-
-export interface SceneJson {
-  version: 1;
-  camera: {
-    position: Vec3;
-    target: Vec3;
-    up: Vec3;
-    fov: number;
-    aperture: number;
-    /** Written only when the scene sets it; absent means the distance to the target. */
-    focusDistance?: number;
-  };
-  image: { width: number; height: number };
-  render: { maxBounces: number };
-  /** Absent when the scene has none (black): the format's way of saying so. */
-  environment?: { color: Vec3; intensity: number };
-  /** Absent when the scene has no ground plane. */
-  ground?: { height: number; material: MaterialJson };
-  lights: { position: Vec3; radius: number; color: Vec3; intensity: number }[];
-  spheres: { center: Vec3; radius: number; material: MaterialJson }[];
-}
+export type { SceneJson };
 
 /** A fresh JSON-ready object (no references shared with `scene`), keys in the documented order. */
 export function serializeScene(scene: Scene): SceneJson {
   const { environment, ground } = scene;
+  const version = Math.max(scene.version, requiredVersion(scene)) as 1 | 2;
+  const material = (m: Material) => materialJson(m, version);
   return {
-    version: 1,
+    version,
     camera: cameraJson(scene.camera),
     image: { width: scene.image.width, height: scene.image.height },
     render: { maxBounces: scene.render.maxBounces },
-    ...(environment ? { environment: { color: vec(environment.color), intensity: environment.intensity } } : {}),
-    ...(ground ? { ground: { height: ground.height, material: materialJson(ground.material) } } : {}),
+    ...(environment ? { environment: environmentJson(environment) } : {}),
+    ...(ground ? { ground: { height: ground.height, material: material(ground.material) } } : {}),
     lights: scene.lights.map((light) => ({
       position: vec(light.position),
       radius: light.radius,
@@ -50,8 +32,9 @@ export function serializeScene(scene: Scene): SceneJson {
     spheres: scene.spheres.map((sphere) => ({
       center: vec(sphere.center),
       radius: sphere.radius,
-      material: materialJson(sphere.material),
+      material: material(sphere.material),
     })),
+    ...(version === 2 ? { meshes: scene.meshes.map((mesh) => meshJson(mesh)) } : {}),
   };
 }
 
@@ -77,9 +60,26 @@ function cameraJson(camera: Camera): SceneJson['camera'] {
   return json;
 }
 
-const materialJson = (material: Material): MaterialJson => ({
-  color: vec(material.color),
-  roughness: material.roughness,
-});
+function environmentJson(e: Environment): NonNullable<SceneJson['environment']> {
+  return 'map' in e ? { map: e.map, intensity: e.intensity, rotation: e.rotation } : { color: vec(e.color), intensity: e.intensity };
+}
+
+/** Version 1 has no `type` key: the standard material is the only one. */
+function materialJson(m: Material, version: 1 | 2) {
+  const base = { color: vec(m.color), roughness: m.roughness };
+  const emission = m.emission ? { emission: { color: vec(m.emission.color), intensity: m.emission.intensity } } : {};
+  if (m.type === 'dielectric') return { type: m.type, ...base, ior: m.ior, ...emission };
+  return version === 1 ? base : { type: m.type, ...base, ...emission };
+}
+
+function meshJson(mesh: Mesh) {
+  return {
+    file: mesh.file,
+    material: materialJson(mesh.material, 2),
+    position: vec(mesh.position),
+    rotation: vec(mesh.rotation),
+    scale: vec(mesh.scale),
+  };
+}
 
 const vec = (v: Vec3): Vec3 => [v[0], v[1], v[2]];

@@ -1,16 +1,41 @@
 /**
- * The validated, normalized scene model (scene format version 1).
+ * The validated, normalized scene model (scene format versions 1 and 2).
  * Every color here is linear RGB; every default of the format is filled in.
  * `parseScene` (schema.ts) is the only way untrusted JSON becomes a `Scene`.
  */
 export type Vec3 = [number, number, number];
 
-export interface Material {
+/** Radiance `color * intensity` emitted from the outside of a surface (version 2). */
+export interface Emission {
+  color: Vec3;
+  intensity: number;
+}
+
+/** The version-1 material: a blend of a Fresnel-less GGX conductor and Lambert. */
+export interface StandardMaterial {
+  type: 'standard';
   /** Linear albedo, each channel in [0, 1]. */
   color: Vec3;
   /** 0 = ideal mirror, 1 = Lambertian; the BSDF blends GGX (alpha = r^2) and Lambert. */
   roughness: number;
+  /** Absent: the surface emits nothing. */
+  emission?: Emission;
 }
+
+/** Glass-like boundary of a solid (Mitsuba's dielectric / roughdielectric), version 2. */
+export interface DielectricMaterial {
+  type: 'dielectric';
+  /** Tint of refracted light, per crossing; reflection is not tinted. */
+  color: Vec3;
+  /** 0 = smooth; above, GGX with alpha = r^2. */
+  roughness: number;
+  /** Index of refraction inside, in [1.01, 4]; outside is 1. */
+  ior: number;
+  emission?: Emission;
+}
+
+export type Material = StandardMaterial | DielectricMaterial;
+export type MaterialType = Material['type'];
 
 export interface Camera {
   position: Vec3;
@@ -34,10 +59,22 @@ export interface RenderSettings {
   maxBounces: number;
 }
 
-export interface Environment {
+/** Constant radiance `color * intensity` for every escaping ray. */
+export interface ConstantEnvironment {
   color: Vec3;
   intensity: number;
 }
+
+/** An equirectangular map (version 2), as Mitsuba's `envmap` emitter. */
+export interface MapEnvironment {
+  /** The file, as written in the scene (relative to the scene file's folder). */
+  map: string;
+  intensity: number;
+  /** Degrees about +y (right-hand rule). */
+  rotation: number;
+}
+
+export type Environment = ConstantEnvironment | MapEnvironment;
 
 export interface Ground {
   height: number;
@@ -57,8 +94,20 @@ export interface Sphere {
   material: Material;
 }
 
+/** A triangle mesh file placed in the scene (version 2). */
+export interface Mesh {
+  /** The file, as written in the scene (relative to the scene file's folder). */
+  file: string;
+  material: Material;
+  position: Vec3;
+  /** Degrees about x, then y, then z (world axes). */
+  rotation: Vec3;
+  scale: Vec3;
+}
+
 export interface Scene {
-  version: 1;
+  /** 2 when the document uses any version-2 key (see `requiredVersion`). */
+  version: 1 | 2;
   camera: Camera;
   image: ImageSize;
   render: RenderSettings;
@@ -68,6 +117,7 @@ export interface Scene {
   ground: Ground | null;
   lights: Light[];
   spheres: Sphere[];
+  meshes: Mesh[];
 }
 
 /**

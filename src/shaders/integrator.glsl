@@ -17,27 +17,42 @@
 // path rate). On a GPU whose warps retire early it can pay off.
 uniform int uMaxBounces;
 
-bool scatters(Hit hit) { return hit.kind == HIT_SPHERE || hit.kind == HIT_GROUND; }
+bool scatters(Hit hit, Material material) { return hit.kind != HIT_NONE && bsdfScatters(material); }
 
-// Radiance leaving the hit towards the ray's origin that only BSDF sampling
-// finds: the sky for an escaped ray; a light's emission (outward side only),
-// MIS-weighted against light sampling at the previous vertex (unless that
-// vertex scattered through a Dirac delta); nothing for other surfaces.
-vec3 emitted(Hit hit, vec3 direction, vec3 previousPosition, bool previousDelta, float previousPdf) {
-  float weight = previousDelta ? 1.0 : powerHeuristic(previousPdf, lightPdf(previousPosition, hit.geometry));
-  vec3 light = dot(direction, hit.normal) < 0.0 ? lightRadiance(hit.index) * weight : vec3(0.0);
-  return hit.kind == HIT_NONE ? uEnvironment.rgb : hit.kind == HIT_LIGHT ? light : vec3(0.0);
+// Radiance leaving the hit towards the ray's origin: the sky for an escaped
+// ray; the surface's emission (outside only), MIS-weighted against light
+// sampling at the previous vertex (unless that vertex scattered through a
+// Dirac delta).
+vec3 emitted(Hit hit, Material material, vec3 direction, vec3 previousPosition, bool previousDelta, float previousPdf) {
+  float weight = previousDelta ? 1.0 : powerHeuristic(previousPdf, lightPdf(previousPosition, hit));
+  vec3 surface = dot(direction, hit.normal) < 0.0 ? material.emission * weight : vec3(0.0);
+  return hit.kind == HIT_NONE ? environmentRadiance() : surface;
+}
+
+// Next-event estimation at a surface vertex: f * Le * |cos| / pdf of one
+// light sample, weighted by the power heuristic against BSDF sampling.
+// u: .xy the point on the emitter, .z the choice of emitter.
+vec3 sampleDirectLight(Hit hit, mat3 frame, vec3 wo, Material m, vec3 u) {
+  LightSample light = sampleLight(hit.position, u);
+  vec3 wi = light.direction * frame;  // transpose(frame) * direction: into the shading frame
+  float bsdfPdf;
+  vec3 f = bsdfEval(m, wo, wi, bsdfPdf);
+  if (light.pdf <= 0.0 || bsdfPdf <= 0.0) return vec3(0.0);
+  bsdfPdf = guidedPdf(bsdfPdf, light.direction);  // BSDF sampling is mixed with the caustic guides
+  vec3 origin = spawnRayOrigin(hit, light.direction);
+  if (occluded(origin, light.direction, light.distance, light.skipSphere)) return vec3(0.0);
+  return f * light.radiance * (powerHeuristic(light.pdf, bsdfPdf) / light.pdf);
 }
 
 // The rest of a path whose camera ray hit `hit` (see scatters), given the
-// radiance it has seen so far.
-vec3 traceRadiance(vec3 direction, Hit hit, vec3 radiance) {
+// radiance it has seen so far. The shading frame's +z is the outside of
+// the surface: one-sided materials see wo.z < 0 from inside and scatter
+// nothing; glass scatters on both sides.
+vec3 traceRadiance(vec3 direction, Hit hit, Material material, vec3 radiance) {
   vec3 throughput = vec3(1.0);
 
   for (int depth = 0; ; depth++) {
-    Material material = surfaceMaterial(hit.kind == HIT_SPHERE, hit.index);
-    vec3 normal = dot(direction, hit.normal) < 0.0 ? hit.normal : -hit.normal;
-    mat3 frame = basisAround(normal);
+    mat3 frame = basisAround(hit.normal);
     vec3 wo = -direction * frame;
 
     // Random numbers of this bounce: light sample, BSDF sample.
@@ -50,11 +65,11 @@ vec3 traceRadiance(vec3 direction, Hit hit, vec3 radiance) {
 #endif
 
     // Caustic guides at this vertex (see lights/caustic_guide.glsl).
-    buildGuides(hit.position, normal, material);
+    buildGuides(hit.position, hit.normal, material);
 
-    // Light arriving directly from a light source (next-event estimation).
+    // Light arriving directly from an emitter (next-event estimation).
     vec3 direct = sampleDirectLight(hit, frame, wo, material, uLight.xyz);
-    radiance += throughput * (hasSmoothLobe(material) ? direct : vec3(0.0));
+    radiance += throughput * (bsdfHasSmoothLobe(material) ? direct : vec3(0.0));
 
     // Sample the BSDF (mixed with the caustic guides) for the next direction.
     BsdfSample bs = sampleGuided(material, frame, wo, uBsdf, uLight.w);
@@ -77,10 +92,11 @@ vec3 traceRadiance(vec3 direction, Hit hit, vec3 radiance) {
     vec3 position = hit.position;
     direction = frame * bs.wi;
     hit = intersectScene(spawnRayOrigin(hit, direction), direction);
-    radiance += throughput * emitted(hit, direction, position, bs.isDelta, bs.pdf);
+    material = loadMaterial(hit.material);
+    radiance += throughput * emitted(hit, material, direction, position, bs.isDelta, bs.pdf);
     // Decided here, not at the top: a lane that leaves at the back edge
     // spares the quad a whole masked pass through the body.
-    if (depth + 1 >= uMaxBounces || !scatters(hit)) break;
+    if (depth + 1 >= uMaxBounces || !scatters(hit, material)) break;
   }
   return radiance;
 }

@@ -39,6 +39,7 @@ void main() {
     bool scattering = false;
     vec3 direction, radiance;
     Hit hit;
+    Material material;
     for (;;) {
       if (scattering || next >= uSamplesPerDraw) break;
       rngBeginSample(uFirstSample + next);
@@ -46,12 +47,13 @@ void main() {
       vec3 origin;
       generateCameraRay(vec2(pixel), origin, direction);
       hit = intersectScene(origin, direction);
-      radiance = emitted(hit, direction, origin, true, 0.0);
-      scattering = uMaxBounces > 0 && scatters(hit);
+      material = loadMaterial(hit.material);
+      radiance = emitted(hit, material, direction, origin, true, 0.0);
+      scattering = uMaxBounces > 0 && scatters(hit, material);
       if (!scattering) accumulate(sum, radiance);
     }
     if (!scattering) break;
-    accumulate(sum, traceRadiance(direction, hit, radiance));
+    accumulate(sum, traceRadiance(direction, hit, material, radiance));
     if (next >= uSamplesPerDraw) break;
   }
   outSum = sum;

@@ -42,7 +42,7 @@ describe('white furnace', () => {
     for (const roughness of [0.02, 0.3, 0.7]) {
       const scene = {
         ...base,
-        spheres: [{ ...base.spheres[0], material: { color: [1, 1, 1] as [number, number, number], roughness } }],
+        spheres: [{ ...base.spheres[0], material: { type: 'standard' as const, color: [1, 1, 1] as [number, number, number], roughness } }],
       };
       const image = await renderLinear(session(), scene, spp, 3, size);
       const expected = expectedFurnaceImage(scene, size.width, size.height);

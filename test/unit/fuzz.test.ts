@@ -55,51 +55,78 @@ function checkParse(input: unknown): void {
   expect(parseScene(serializeScene(scene))).toStrictEqual(scene);
 }
 
-/** The rules of docs/scene-format.md, restated independently of the schema. */
+/** The rules of docs/scene-format.md, restated independently of the schema; each check says what failed. */
 function checkScene(scene: Scene): void {
   const finite = (x: unknown) => typeof x === 'number' && Number.isFinite(x);
   const vec = (v: Vec3, ok: (x: number) => boolean = finite) =>
     Array.isArray(v) && v.length === 3 && v.every((x) => finite(x) && ok(x));
   const inBox = (x: number) => Math.abs(x) <= 1e6;
-  const keys = (object: object, expected: string[]) => expect(Object.keys(object).sort()).toEqual(expected.sort());
-  const material = (m: Material) => {
-    keys(m, ['color', 'roughness']);
-    expect(vec(m.color, (x) => x >= 0 && x <= 1)).toBe(true);
-    expect(m.roughness >= 0 && m.roughness <= 1).toBe(true);
+  const keys = (object: object, expected: string[], what: string) =>
+    expect(Object.keys(object).sort(), `keys of ${what}`).toEqual(expected.sort());
+  const check = (ok: boolean, what: string) => expect(ok, what).toBe(true);
+  const material = (m: Material, what: string) => {
+    const emission = m.emission ? ['emission'] : [];
+    if (m.type === 'dielectric') {
+      keys(m, ['type', 'color', 'roughness', 'ior', ...emission], what);
+      check(m.ior >= 1.01 && m.ior <= 4, `${what}.ior in [1.01, 4]`);
+    } else {
+      keys(m, ['type', 'color', 'roughness', ...emission], what);
+      check(m.type === 'standard', `${what}.type is standard or dielectric`);
+    }
+    check(vec(m.color, (x) => x >= 0 && x <= 1), `${what}.color in [0, 1]`);
+    check(m.roughness >= 0 && m.roughness <= 1, `${what}.roughness in [0, 1]`);
+    if (m.emission) check(vec(m.emission.color, (x) => x >= 0) && m.emission.intensity >= 0, `${what}.emission >= 0`);
   };
 
-  keys(scene, ['version', 'camera', 'image', 'render', 'environment', 'ground', 'lights', 'spheres']);
-  expect(scene.version).toBe(1);
+  keys(scene, ['version', 'camera', 'image', 'render', 'environment', 'ground', 'lights', 'spheres', 'meshes'], 'the scene');
+  check(scene.version === 1 || scene.version === 2, 'version is 1 or 2');
+  const v2Used = scene.meshes.length > 0 || (scene.environment !== null && 'map' in scene.environment) ||
+    [...scene.spheres.map((s) => s.material), ...(scene.ground ? [scene.ground.material] : [])].some((m) => m.type !== 'standard' || m.emission);
+  if (v2Used) check(scene.version === 2, 'version-2 keys only in version-2 documents');
   const { camera } = scene;
-  expect(vec(camera.position, inBox) && vec(camera.target, inBox) && vec(camera.up, inBox)).toBe(true);
-  expect(camera.position.some((x, i) => x !== camera.target[i])).toBe(true);
-  expect(camera.up.some((x) => x !== 0)).toBe(true);
-  expect(camera.fov > 0 && camera.fov < 180 && camera.aperture >= 0).toBe(true);
-  if ('focusDistance' in camera) expect(finite(camera.focusDistance) && camera.focusDistance! > 0).toBe(true);
+  check(vec(camera.position, inBox) && vec(camera.target, inBox) && vec(camera.up, inBox), 'camera vectors in the box');
+  check(camera.position.some((x, i) => x !== camera.target[i]), 'camera.target differs from position');
+  check(camera.up.some((x) => x !== 0), 'camera.up not zero');
+  check(camera.fov > 0 && camera.fov < 180 && camera.aperture >= 0, 'camera.fov and aperture in range');
+  if ('focusDistance' in camera) check(finite(camera.focusDistance) && camera.focusDistance! > 0, 'focusDistance > 0');
   const { width, height } = scene.image;
-  for (const size of [width, height]) expect(Number.isInteger(size) && size >= 1 && size <= MAX_IMAGE_SIZE).toBe(true);
+  for (const size of [width, height]) check(Number.isInteger(size) && size >= 1 && size <= MAX_IMAGE_SIZE, 'image size in range');
   const bounces = scene.render.maxBounces;
-  expect(Number.isInteger(bounces) && bounces >= 0 && bounces <= MAX_BOUNCES).toBe(true);
-  if (scene.environment !== null) {
-    expect(vec(scene.environment.color, (x) => x >= 0)).toBe(true);
-    expect(finite(scene.environment.intensity) && scene.environment.intensity >= 0).toBe(true);
+  check(Number.isInteger(bounces) && bounces >= 0 && bounces <= MAX_BOUNCES, 'maxBounces in range');
+  const environment = scene.environment;
+  if (environment !== null) {
+    if ('map' in environment) {
+      keys(environment, ['map', 'intensity', 'rotation'], 'environment');
+      check(typeof environment.map === 'string' && environment.map.length > 0 && finite(environment.rotation), 'environment map and rotation');
+    } else {
+      keys(environment, ['color', 'intensity'], 'environment');
+      check(vec(environment.color, (x) => x >= 0), 'environment.color >= 0');
+    }
+    check(finite(environment.intensity) && environment.intensity >= 0, 'environment.intensity >= 0');
   }
   if (scene.ground !== null) {
-    expect(finite(scene.ground.height)).toBe(true);
-    material(scene.ground.material);
+    check(finite(scene.ground.height), 'ground.height finite');
+    material(scene.ground.material, 'ground.material');
+    check(scene.ground.material.type === 'standard' && !scene.ground.material.emission, 'ground is standard, not emissive');
   }
-  expect(scene.lights.length).toBeLessThanOrEqual(MAX_LIGHTS);
-  for (const light of scene.lights) {
-    keys(light, ['position', 'radius', 'color', 'intensity']);
-    expect(vec(light.position, inBox) && vec(light.color, (x) => x >= 0)).toBe(true);
-    expect(light.radius > 0 && light.radius <= 1e6 && light.intensity >= 0 && finite(light.intensity)).toBe(true);
-  }
-  expect(scene.spheres.length).toBeLessThanOrEqual(MAX_SPHERES);
-  for (const sphere of scene.spheres) {
-    keys(sphere, ['center', 'radius', 'material']);
-    expect(vec(sphere.center, inBox) && sphere.radius > 0 && sphere.radius <= 1e6).toBe(true);
-    material(sphere.material);
-  }
+  check(scene.lights.length <= MAX_LIGHTS, 'at most MAX_LIGHTS lights');
+  scene.lights.forEach((light, i) => {
+    keys(light, ['position', 'radius', 'color', 'intensity'], `lights[${i}]`);
+    check(vec(light.position, inBox) && vec(light.color, (x) => x >= 0), `lights[${i}] position and color`);
+    check(light.radius > 0 && light.radius <= 1e6 && light.intensity >= 0 && finite(light.intensity), `lights[${i}] radius and intensity`);
+  });
+  check(scene.spheres.length <= MAX_SPHERES, 'at most MAX_SPHERES spheres');
+  scene.spheres.forEach((sphere, i) => {
+    keys(sphere, ['center', 'radius', 'material'], `spheres[${i}]`);
+    check(vec(sphere.center, inBox) && sphere.radius > 0 && sphere.radius <= 1e6, `spheres[${i}] center and radius`);
+    material(sphere.material, `spheres[${i}].material`);
+  });
+  scene.meshes.forEach((mesh, i) => {
+    keys(mesh, ['file', 'material', 'position', 'rotation', 'scale'], `meshes[${i}]`);
+    check(typeof mesh.file === 'string' && mesh.file.length > 0, `meshes[${i}].file`);
+    check(vec(mesh.position, inBox) && vec(mesh.rotation) && vec(mesh.scale, (x) => x > 0), `meshes[${i}] transform`);
+    material(mesh.material, `meshes[${i}].material`);
+  });
 }
 
 // ---------------------------------------------------------------- tree editing
@@ -311,7 +338,7 @@ describe('fuzzing parseScene', () => {
 });
 
 describe('every bad value is reported at its own path', () => {
-  const seed = fixtures.find((f) => (f.spheres as unknown[]).length === 5)!;
+  const seed = fixtures.find((f) => ((f.spheres ?? []) as unknown[]).length === 5)!;
   const leaves = pathsOf(seed).filter((path) => typeof containerOf(seed, path)[path[path.length - 1]] === 'number');
 
   it.each([

@@ -72,20 +72,21 @@ function scene(overrides: Partial<Scene> = {}): Scene {
     image: { width: 64, height: 32 },
     render: { maxBounces: 6 },
     environment: { color: [0.5, 0.25, 1], intensity: 2 },
-    ground: { height: -0.5, material: { color: [0.6, 0.6, 0.6], roughness: 1 } },
+    ground: { height: -0.5, material: { type: 'standard', color: [0.6, 0.6, 0.6], roughness: 1 } },
     lights: [{ position: [1, 4, 2], radius: 0.5, color: [1, 0.5, 0.25], intensity: 8 }],
+    meshes: [],
     spheres: [
-      { center: [-1, 0, 0], radius: 0.5, material: { color: [0.9, 0.6, 0.3], roughness: 0 } },
-      { center: [0, 0, 0], radius: 0.5, material: { color: [0.2, 0.4, 0.8], roughness: 0.5 } },
-      { center: [1, 0, 0], radius: 0.5, material: { color: [0.7, 0.7, 0.7], roughness: 1 } },
+      { center: [-1, 0, 0], radius: 0.5, material: { type: 'standard', color: [0.9, 0.6, 0.3], roughness: 0 } },
+      { center: [0, 0, 0], radius: 0.5, material: { type: 'standard', color: [0.2, 0.4, 0.8], roughness: 0.5 } },
+      { center: [1, 0, 0], radius: 0.5, material: { type: 'standard', color: [0.7, 0.7, 0.7], roughness: 1 } },
     ],
     ...overrides,
   };
 }
 
-/** The BSDF under a twosided wrapper of a shape. */
+/** The BSDF of a shape (one-sided, as the format says for spheres and the ground). */
 function innerBsdf(shape: XmlNode): XmlNode {
-  return one(one(shape, 'bsdf', 'twosided'), 'bsdf');
+  return one(shape, 'bsdf');
 }
 
 describe('toMitsubaXml', () => {
@@ -170,7 +171,7 @@ describe('toMitsubaXml', () => {
     expect(second.attrs.type).toBe('diffuse');
     expect(nums(prop(second, 'rgb', 'reflectance'))).toEqual([0.2, 0.4, 0.8]);
     const r = 0.3;
-    const rough = parseXml(toMitsubaXml(scene({ lights: [], spheres: [{ center: [0, 0, 0], radius: 1, material: { color: [1, 1, 1], roughness: r } }] })));
+    const rough = parseXml(toMitsubaXml(scene({ lights: [], spheres: [{ center: [0, 0, 0], radius: 1, material: { type: 'standard', color: [1, 1, 1], roughness: r } }] })));
     const alpha = Number(prop(kids(innerBsdf(one(rough, 'shape', 'sphere')), 'bsdf')[0], 'float', 'alpha'));
     expect(alpha).toBe(r * r);
   });

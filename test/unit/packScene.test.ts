@@ -1,63 +1,151 @@
 import { describe, expect, it } from 'vitest';
-import { BLOCK, GROUND_FIELDS, GUIDE_FIELDS, LIGHT_FIELDS, LIGHT_VEC4S, MAX_GUIDES, SPHERE_FIELDS, SPHERE_VEC4S } from '../../src/render/layout';
-import { causticGuides, packScene } from '../../src/render/packScene';
+import { buildAliasTable } from '../../src/render/aliasTable';
+import { selectCausticGuides } from '../../src/render/causticGuides';
+import { defineRecord, packRecord, recordGlsl } from '../../src/render/layout/records';
+import {
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, GUIDE_FIELDS, HEADER, MATERIAL, MATERIAL_TYPES, MAX_GUIDES, SECTIONS, SPHERE,
+} from '../../src/render/layout/scene';
+import { packScene } from '../../src/render/packScene';
 import { parseScene } from '../../src/scene/schema';
 
 const camera = { position: [0, 1, 5], target: [0, 0, 0] };
-const vec4 = (data: Float32Array, slot: number) => Array.from(data.subarray(slot * 4, slot * 4 + 4));
 
-describe('packScene', () => {
-  it('writes every field where layout.ts says, with light radiance = color * intensity', () => {
-    const scene = parseScene({
-      camera,
-      environment: { color: [0.5, 0.25, 1], intensity: 2 },
-      ground: { height: -1, material: { color: [0.1, 0.2, 0.3], roughness: 0.4 } },
-      lights: [{ position: [1, 2, 3], radius: 0.5, color: [1, 0.5, 0.25], intensity: 4 }],
-      spheres: [
-        { center: [0, 0, 0], radius: 1, material: { color: [0.25, 0.5, 0.75], roughness: 0.5 } },
-        { center: [3, 0, 0], radius: 2 },
-      ],
-    });
-    const data = packScene(scene);
-    expect(data.length).toBe(BLOCK.size * 4);
-    expect(vec4(data, BLOCK.spheres + SPHERE_VEC4S + SPHERE_FIELDS.GEOMETRY)).toEqual([3, 0, 0, 2]);
-    expect(vec4(data, BLOCK.spheres + SPHERE_FIELDS.MATERIAL)).toEqual([0.25, 0.5, 0.75, 0.5]);
-    expect(vec4(data, BLOCK.lights + LIGHT_FIELDS.GEOMETRY)).toEqual([1, 2, 3, 0.5]);
-    expect(vec4(data, BLOCK.lights + LIGHT_FIELDS.RADIANCE).slice(0, 3)).toEqual([4, 2, 1]);
-    expect(vec4(data, BLOCK.ground + GROUND_FIELDS.GEOMETRY)[0]).toBe(-1);
-    expect(vec4(data, BLOCK.environment).slice(0, 3)).toEqual([1, 0.5, 2]);
-    expect(vec4(data, BLOCK.counts)).toEqual([2, 1, 1, 0]);
-    expect(LIGHT_VEC4S).toBe(2);
+/** Reads record `index` of a table back into named fields, through the layout's own field table. */
+function readRecord(data: Float32Array, first: number, layout: typeof MATERIAL, index: number): Record<string, number | number[]> {
+  const base = (first + index * layout.texels) * 4;
+  const out: Record<string, number | number[]> = {};
+  for (const f of layout.fields) {
+    const at = base + f.texel * 4 + f.offset;
+    out[f.name] = f.type === 'vec3' ? Array.from(data.subarray(at, at + 3)) : data[at];
+  }
+  return out;
+}
+
+describe('record layouts', () => {
+  it('lay fields out in order without a vec3 straddling two texels', () => {
+    const layout = defineRecord('Test', [['a', 'float'], ['b', 'float'], ['v', 'vec3'], ['i', 'int']]);
+    expect(layout.fields.map((f) => [f.texel, f.offset])).toEqual([[0, 0], [0, 1], [1, 0], [1, 3]]);
+    expect(layout.texels).toBe(2);
+    expect(Array.from(packRecord(layout, { a: 1, v: [2, 3, 4], i: 5 }))).toEqual([1, 0, 0, 0, 2, 3, 4, 5]);
+    expect(() => packRecord(layout, { nope: 1 })).toThrow(/no field/);
+    expect(() => packRecord(layout, { v: [1, 2] })).toThrow(/expected 3/);
   });
 
-  it('packs an empty scene with zero counts and a black environment', () => {
-    const data = packScene(parseScene({ camera }));
-    expect(vec4(data, BLOCK.counts)).toEqual([0, 0, 0, 0]);
-    expect(vec4(data, BLOCK.environment)).toEqual([0, 0, 0, 0]);
+  it('generate GLSL readers that take each field from the texel and component the packer wrote', () => {
+    const glsl = recordGlsl(MATERIAL, 'fetch');
+    for (const f of MATERIAL.fields) {
+      const swizzle = 'xyzw'.slice(f.offset, f.offset + (f.type === 'vec3' ? 3 : 1));
+      expect(glsl).toContain(`r.${f.name} = ${f.type === 'int' ? `int(t${f.texel}.${swizzle})` : `t${f.texel}.${swizzle}`};`);
+    }
+    expect(glsl).toContain(`vec4 t${MATERIAL.texels - 1} = fetch(first + ${MATERIAL.texels - 1});`);
   });
 });
 
-describe('causticGuides', () => {
-  const mirror = (x: number, radius = 1, roughness = 0) => ({ center: [x, 1, 0], radius, material: { color: [0.9, 0.9, 0.9], roughness } });
-  const light = (intensity: number, radius = 0.5) => ({ position: [0, 5, 0], radius, intensity });
+describe('packScene', () => {
+  const scene = parseScene({
+    version: 2,
+    camera,
+    environment: { color: [0.5, 0.25, 1], intensity: 2 },
+    ground: { height: -1, material: { color: [0.1, 0.2, 0.3], roughness: 0.4 } },
+    lights: [{ position: [1, 2, 3], radius: 0.5, color: [1, 0.5, 0.25], intensity: 4 }],
+    spheres: [
+      { center: [0, 0, 0], radius: 1, material: { color: [0.25, 0.5, 0.75], roughness: 0.5, emission: { color: [1, 1, 1], intensity: 3 } } },
+      { center: [3, 0, 0], radius: 2, material: { type: 'dielectric', ior: 1.33, roughness: 0.1, color: [0.9, 1, 1] } },
+    ],
+  });
+  const packed = packScene(scene);
 
-  it('pairs ideal mirrors (alpha below the smooth limit) with lights, brightest first, at most MAX_GUIDES', () => {
-    const scene = parseScene({
-      camera,
-      lights: [light(10), light(40), light(0)],
-      spheres: [mirror(0, 1, 0.5), mirror(2, 0.5, 0.02), mirror(-2, 1, 0), mirror(4, 1, 0.04)],
-    });
-    // Sphere 0 is rough, sphere 3 has alpha = 0.0016 (a glossy lobe, not a mirror), light 2 is dark.
-    expect(causticGuides(scene)).toEqual([[2, 1], [1, 1]].slice(0, MAX_GUIDES));
-    const packed = packScene(scene);
-    expect(vec4(packed, BLOCK.counts)[3]).toBe(Math.min(MAX_GUIDES, 4));
-    // Guide 0 = (sphere 2, light 1): their geometry.
-    expect(vec4(packed, BLOCK.guides + GUIDE_FIELDS.MIRROR)).toEqual([-2, 1, 0, 1]);
-    expect(vec4(packed, BLOCK.guides + GUIDE_FIELDS.LIGHT)).toEqual([0, 5, 0, 0.5]);
+  it('writes spheres, then lights as emitter-only spheres, each with its own material', () => {
+    expect(packed.data.length).toBe(DATA_TEXELS * 4);
+    expect(packed.block.length).toBe(BLOCK_VEC4S * 4);
+    const spheres = [0, 1, 2].map((i) => readRecord(packed.data, SECTIONS.spheres, SPHERE, i));
+    expect(spheres.map((s) => [s.center, s.radius])).toEqual([[[0, 0, 0], 1], [[3, 0, 0], 2], [[1, 2, 3], 0.5]]);
+    const materials = spheres.map((s) => readRecord(packed.data, SECTIONS.materials, MATERIAL, s.material as number));
+    expect(materials[0]).toMatchObject({ type: MATERIAL_TYPES.standard, color: [0.25, 0.5, 0.75], roughness: 0.5, emission: [3, 3, 3] });
+    expect(materials[1].type).toBe(MATERIAL_TYPES.dielectric);
+    expect(materials[1].ior).toBeCloseTo(1.33, 6);
+    expect(materials[1].roughness).toBeCloseTo(0.1, 6);
+    expect(materials[2]).toMatchObject({ type: MATERIAL_TYPES.emitterOnly, emission: [4, 2, 1], color: [0, 0, 0] });
   });
 
-  it('has no guides without mirrors or without lights', () => {
-    expect(causticGuides(parseScene({ camera, lights: [light(10)], spheres: [mirror(0, 1, 1)] }))).toEqual([]);
-    expect(causticGuides(parseScene({ camera, spheres: [mirror(0)] }))).toEqual([]);
+  it('lists emitters by power with probabilities that match the spheres they point at', () => {
+    const header = readRecord(packed.block, 0, HEADER, 0);
+    expect(header).toMatchObject({ sphereCount: 3, emitterCount: 2, groundEnabled: 1, groundHeight: -1, environment: [1, 0.5, 2] });
+    const emitters = [0, 1].map((i) => readRecord(packed.data, SECTIONS.emitters, EMITTER, i));
+    expect(emitters.map((e) => e.primitive)).toEqual([0, 2]);
+    // Power ~ radiance sum * r^2: 9 * 1 vs 7 * 0.25.
+    expect(emitters[0].pdf).toBeCloseTo(9 / (9 + 1.75), 6);
+    expect(emitters[1].pdf).toBeCloseTo(1.75 / (9 + 1.75), 6);
+    for (const e of emitters) {
+      const sphere = readRecord(packed.data, SECTIONS.spheres, SPHERE, e.primitive as number);
+      expect(sphere.emitterPdf).toBe(e.pdf);
+    }
+    expect(readRecord(packed.data, SECTIONS.spheres, SPHERE, 1).emitterPdf).toBe(0);
+    const ground = readRecord(packed.data, SECTIONS.materials, MATERIAL, header.groundMaterial as number);
+    expect(ground).toMatchObject({ type: MATERIAL_TYPES.standard, roughness: expect.closeTo(0.4, 6) });
+    const choice = readRecord(packed.data, SECTIONS.emitterChoices, EMITTER_CHOICE, 1);
+    expect(choice.alias).toBe(0);
+    expect(packed.features).toEqual({ guides: 0, dielectric: true });
+  });
+
+  it('packs an empty scene with zero counts and a black environment', () => {
+    const empty = packScene(parseScene({ camera }));
+    expect(readRecord(empty.block, 0, HEADER, 0)).toMatchObject({ sphereCount: 0, emitterCount: 0, groundEnabled: 0, environment: [0, 0, 0] });
+    expect(empty.features).toEqual({ guides: 0, dielectric: false });
+  });
+});
+
+describe('buildAliasTable', () => {
+  it('draws every index with its probability (exactly, integrating over u)', () => {
+    for (const weights of [[1], [1, 1, 1], [1, 2, 3, 4], [0.001, 5, 0, 2], [10, 1e-6]]) {
+      const table = buildAliasTable(weights);
+      const n = weights.length;
+      const drawn = new Array<number>(n).fill(0);
+      // Each slot i covers u in [i/n, (i+1)/n): a fraction `threshold` keeps i, the rest goes to the alias.
+      table.threshold.forEach((t, i) => {
+        drawn[i] += t / n;
+        drawn[table.alias[i]] += (1 - t) / n;
+      });
+      const total = weights.reduce((a, b) => a + b, 0);
+      weights.forEach((w, i) => {
+        expect(drawn[i]).toBeCloseTo(w / total, 9);
+        expect(table.pdf[i]).toBeCloseTo(w / total, 12);
+      });
+    }
+  });
+
+  it('keeps every index (the plain uniform choice) for equal weights', () => {
+    expect(buildAliasTable([2, 2, 2]).threshold).toEqual([1, 1, 1]);
+  });
+});
+
+describe('selectCausticGuides', () => {
+  const mirror = (x: number, radius = 1, roughness = 0) => ({ center: [x, 1, 0], radius, material: { color: [0.9, 0.9, 0.9], roughness } });
+  const light = (intensity: number, radius = 0.5) => ({ position: [0, 5, 0], radius, intensity });
+  const spheresOf = (json: object) => {
+    const s = parseScene({ camera, ...json });
+    return [
+      ...s.spheres.map((x) => ({ center: x.center, radius: x.radius, material: x.material, radiance: x.material.emission ? [1, 1, 1] as [number, number, number] : [0, 0, 0] as [number, number, number] })),
+      ...s.lights.map((l) => ({ center: l.position, radius: l.radius, material: 'emitterOnly' as const, radiance: l.color.map((c) => c * l.intensity) as [number, number, number] })),
+    ];
+  };
+
+  it('pairs ideal mirrors (alpha below the smooth limit) with emitters, brightest first, at most MAX_GUIDES', () => {
+    const json = { lights: [light(10), light(40), light(0)], spheres: [mirror(0, 1, 0.5), mirror(2, 0.5, 0.02), mirror(-2, 1, 0), mirror(4, 1, 0.04)] };
+    // Sphere 0 is rough, sphere 3 has alpha = 0.0016 (a glossy lobe, not a mirror), light 2 is dark.
+    // Lights follow the 4 spheres: light 1 is sphere 5.
+    expect(selectCausticGuides(spheresOf(json))).toEqual([[2, 5], [1, 5]].slice(0, MAX_GUIDES));
+    const packed = packScene(parseScene({ camera, ...json }));
+    expect(packed.features.guides).toBe(Math.min(MAX_GUIDES, 4));
+    const guide = (field: number) => Array.from(packed.block.subarray((HEADER.texels + field) * 4, (HEADER.texels + field) * 4 + 4));
+    expect(guide(GUIDE_FIELDS.MIRROR)).toEqual([-2, 1, 0, 1]);
+    expect(guide(GUIDE_FIELDS.LIGHT)).toEqual([0, 5, 0, 0.5]);
+  });
+
+  it('has no guides without mirrors or without emitters, and never aims glass', () => {
+    expect(selectCausticGuides(spheresOf({ lights: [light(10)], spheres: [mirror(0, 1, 1)] }))).toEqual([]);
+    expect(selectCausticGuides(spheresOf({ spheres: [mirror(0)] }))).toEqual([]);
+    const glass = { center: [0, 1, 0], radius: 1, material: { type: 'dielectric' } };
+    expect(selectCausticGuides(spheresOf({ version: 2, lights: [light(10)], spheres: [glass] }))).toEqual([]);
   });
 });

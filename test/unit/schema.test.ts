@@ -54,8 +54,8 @@ function thrown(run: () => unknown): SceneError {
 }
 
 describe('valid scenes', () => {
-  it('finds the five fixtures', () => {
-    expect(fixtureNames.sort()).toEqual(['furnace', 'glossy', 'mirrors', 'seed', 'small-light']);
+  it('finds the nine fixtures', () => {
+    expect(fixtureNames.sort()).toEqual(['bunny', 'emissive', 'envmap', 'furnace', 'glass', 'glossy', 'mirrors', 'seed', 'small-light']);
   });
 
   it.each(fixtureNames)('parses %s, keeping its values', (name) => {
@@ -63,9 +63,11 @@ describe('valid scenes', () => {
     const scene = parseScene(json);
     expect(scene.camera.position).toEqual(json.camera.position);
     expect(scene.image).toEqual(json.image);
-    expect(scene.render).toEqual(json.render);
-    expect(scene.spheres).toEqual(json.spheres);
-    expect(scene.lights).toHaveLength(json.lights.length);
+    expect(scene.render).toEqual(json.render ?? { maxBounces: 6 });
+    expect(scene.spheres.map((s) => s.center)).toEqual((json.spheres ?? []).map((s: { center: number[] }) => s.center));
+    expect(scene.lights).toHaveLength(json.lights?.length ?? 0);
+    expect(scene.meshes).toHaveLength(json.meshes?.length ?? 0);
+    expect(scene.version).toBe(json.version);
   });
 
   it.each(fixtureNames)('round-trips %s through serializeScene and JSON text', (name) => {
@@ -101,6 +103,7 @@ describe('valid scenes', () => {
       ground: null,
       lights: [],
       spheres: [],
+      meshes: [],
     } satisfies Scene);
   });
 
@@ -116,14 +119,14 @@ describe('valid scenes', () => {
         { center: [4, 1, 0], radius: 1, material: { roughness: 0.2 } },
       ],
     });
-    const defaultMaterial = { color: [0.8, 0.8, 0.8], roughness: 1 };
+    const defaultMaterial = { type: 'standard', color: [0.8, 0.8, 0.8], roughness: 1 };
     expect(scene.environment).toStrictEqual({ color: [1, 1, 1], intensity: 1 });
     expect(scene.ground).toStrictEqual({ height: 0, material: defaultMaterial });
     expect(scene.lights).toStrictEqual([{ position: [0, 5, 0], radius: 0.5, color: [1, 1, 1], intensity: 1 }]);
     expect(scene.spheres.map((s) => s.material)).toStrictEqual([
       defaultMaterial,
       defaultMaterial,
-      { color: [0.8, 0.8, 0.8], roughness: 0.2 },
+      { type: 'standard', color: [0.8, 0.8, 0.8], roughness: 0.2 },
     ]);
   });
 
@@ -146,7 +149,7 @@ describe('valid scenes', () => {
       lights: [{ position: [0, 5, 0], radius: 1, color: '#808080' }],
       spheres: [{ center: [0, 0, 0], radius: 1, material: { color: '#000000' } }],
     });
-    expect(scene.environment?.color).toEqual([1, 1, 1]);
+    expect(scene.environment && 'color' in scene.environment && scene.environment.color).toEqual([1, 1, 1]);
     expect(scene.lights[0].color[0]).toBeCloseTo(0.2158605, 7);
     expect(scene.spheres[0].material.color).toEqual([0, 0, 0]);
   });
@@ -207,9 +210,9 @@ describe('valid scenes', () => {
 });
 
 describe('presets', () => {
-  it('are copies of the fixture scenes', () => {
-    expect([...PRESET_NAMES].sort()).toEqual([...fixtureNames].sort());
-    for (const name of fixtureNames) expect(PRESETS[name]).toEqual(fixture(name));
+  it('are copies of the fixture scenes (all but those that need map or mesh files)', () => {
+    expect([...PRESET_NAMES].sort()).toEqual(fixtureNames.filter((name) => !['bunny', 'envmap'].includes(name)).sort());
+    for (const name of PRESET_NAMES) expect(PRESETS[name]).toEqual(fixture(name));
   });
 
   it('all parse', () => {
@@ -238,8 +241,8 @@ const BAD_SCENES: [string, unknown, string, string][] = [
   ['missing camera', {}, 'camera', 'required'],
   ['camera not an object', { camera: 'front' }, 'camera', 'must be an object'],
   ['missing camera.target', { camera: { position: [0, 0, 1] } }, 'camera.target', 'required'],
-  ['version 2', edited((s) => (s.version = 2)), 'version', 'must be 1'],
-  ['version "1"', edited((s) => (s.version = '1')), 'version', 'must be 1'],
+  ['version 3', edited((s) => (s.version = 3)), 'version', 'must be 1 or 2'],
+  ['version "1"', edited((s) => (s.version = '1')), 'version', 'must be 1 or 2'],
   ['a point with two numbers', edited((s) => (s.camera.position = [0, 1])), 'camera.position', 'must be [x, y, z]'],
   ['a point with four numbers', edited((s) => (s.spheres[1].center = [0, 1, 2, 3])), 'spheres[1].center', 'must be [x, y, z]'],
   ['a point as a string', edited((s) => (s.lights[0].position = '0 1 2')), 'lights[0].position', 'must be [x, y, z]'],
@@ -290,7 +293,31 @@ const BAD_SCENES: [string, unknown, string, string][] = [
   ['an unknown camera key', edited((s) => (s.camera.zoom = 2)), 'camera.zoom', 'unknown key'],
   ['an unknown key with a space', edited((s) => (s.image['my width'] = 2)), 'image["my width"]', 'unknown key'],
   ['a __proto__ key', JSON.parse('{"camera":{"position":[0,0,1],"target":[0,0,0]},"__proto__":{}}'), '__proto__', 'unknown key'],
+  // Version 2.
+  ['a material type in a version-1 document', edited((s) => (s.spheres[0].material.type = 'standard')), 'spheres[0].material.type', 'requires "version": 2'],
+  ['emission in a version-1 document', edited((s) => (s.spheres[1].material.emission = {})), 'spheres[1].material.emission', 'requires "version": 2'],
+  ['a map in a version-1 document', edited((s) => (s.environment = { map: 'sky.hdr' })), 'environment.map', 'requires "version": 2'],
+  ['meshes in a version-1 document', edited((s) => (s.meshes = [])), 'meshes', 'requires "version": 2'],
+  ['an unknown material type', v2((s) => (s.spheres[0].material.type = 'glass')), 'spheres[0].material.type', 'must be "standard" or "dielectric"'],
+  ['a dielectric ground', v2((s) => (s.ground.material = { type: 'dielectric' })), 'ground.material.type', 'must be "standard" on the ground'],
+  ['an emissive ground', v2((s) => (s.ground.material.emission = { intensity: 2 })), 'ground.material.emission', 'is not allowed on the ground'],
+  ['ior below 1.01', v2((s) => (s.spheres[0].material = { type: 'dielectric', ior: 1 })), 'spheres[0].material.ior', 'must be >= 1.01'],
+  ['ior above 4', v2((s) => (s.spheres[0].material = { type: 'dielectric', ior: 4.5 })), 'spheres[0].material.ior', 'must be <= 4'],
+  ['ior on a standard material', v2((s) => (s.spheres[0].material.ior = 1.5)), 'spheres[0].material.ior', 'unknown key for this type'],
+  ['negative emission intensity', v2((s) => (s.spheres[0].material.emission = { intensity: -1 })), 'spheres[0].material.emission.intensity', 'must be >= 0'],
+  ['a map that is not a string', v2((s) => (s.environment = { map: 3 })), 'environment.map', 'must be a string'],
+  ['a color beside a map', v2((s) => (s.environment = { map: 'a.hdr', color: [1, 1, 1] })), 'environment.color', 'unknown key for this type'],
+  ['a mesh without a file', v2((s) => (s.meshes = [{}])), 'meshes[0].file', 'required'],
+  ['a zero mesh scale', v2((s) => (s.meshes = [{ file: 'a.obj', scale: [1, 0, 1] }])), 'meshes[0].scale[1]', 'must be > 0'],
 ];
+
+/** A version-2 copy of the seed scene with `edit` applied. */
+function v2(edit: (scene: Record<string, any>) => void): unknown {
+  return edited((s) => {
+    s.version = 2;
+    edit(s);
+  });
+}
 
 describe('invalid scenes', () => {
   it.each(BAD_SCENES)('rejects %s', (_, input, path, message) => {
@@ -303,7 +330,7 @@ describe('invalid scenes', () => {
 
   it('reports every error at once, each with its path', () => {
     const input = edited((s) => {
-      s.version = 2;
+      s.version = 3;
       s.camera.fov = 200;
       s.camera.target = [...s.camera.position];
       s.image.width = -5;
@@ -475,10 +502,10 @@ describe('docs/scene-format.md', () => {
   });
 
   it('shows error messages the parser really gives', () => {
-    const block = /```\n(version: must be 1[\s\S]*?)```/.exec(doc)?.[1];
+    const block = /```\n(version: must be 1 or 2[\s\S]*?)```/.exec(doc)?.[1];
     expect(block).toBeDefined();
     const input = edited((s) => {
-      s.version = 2;
+      s.version = 3;
       s.camera.target = [...s.camera.position];
       s.image.width = 1.5;
       s.spheres[2].material.roughness = 3;

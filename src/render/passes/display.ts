@@ -2,7 +2,7 @@
 import displayFrag from '../../shaders/display.frag?raw';
 import { Program } from '../gl/program';
 import type { FloatTarget } from '../gl/targets';
-import { layoutDefines, TONEMAPS, type ToneMap } from '../layout';
+import { TONEMAPS, toneMapDefines, type ToneMap } from '../toneMaps';
 import { VERTEX_CHUNKS } from './trace';
 
 export interface DisplayOptions {
@@ -24,7 +24,7 @@ export class DisplayPass {
   private readonly program: Program;
 
   constructor(private readonly gl: WebGL2RenderingContext) {
-    this.program = new Program(gl, VERTEX_CHUNKS, [{ name: 'display.frag', source: displayFrag }], layoutDefines());
+    this.program = new Program(gl, VERTEX_CHUNKS, [{ name: 'display.frag', source: displayFrag }], toneMapDefines());
   }
 
   /** Draws into `framebuffer` (null = the canvas) of the given size. */

@@ -4,11 +4,15 @@ import mathGlsl from '../../shaders/common/math.glsl?raw';
 import rngGlsl from '../../shaders/common/rng.glsl?raw';
 import samplingGlsl from '../../shaders/common/sampling.glsl?raw';
 import layoutGlsl from '../../shaders/scene/layout.glsl?raw';
+import accessGlsl from '../../shaders/scene/access.glsl?raw';
 import intersectGlsl from '../../shaders/scene/intersect.glsl?raw';
 import ggxGlsl from '../../shaders/bsdf/ggx.glsl?raw';
-import materialGlsl from '../../shaders/bsdf/material.glsl?raw';
+import standardGlsl from '../../shaders/bsdf/standard.glsl?raw';
+import dielectricGlsl from '../../shaders/bsdf/dielectric.glsl?raw';
+import bsdfGlsl from '../../shaders/bsdf/bsdf.glsl?raw';
 import causticGuideGlsl from '../../shaders/lights/caustic_guide.glsl?raw';
-import sphereLightGlsl from '../../shaders/lights/sphere_light.glsl?raw';
+import sphereEmitterGlsl from '../../shaders/lights/sphere_emitter.glsl?raw';
+import lightsGlsl from '../../shaders/lights/lights.glsl?raw';
 import cameraGlsl from '../../shaders/camera.glsl?raw';
 import integratorGlsl from '../../shaders/integrator.glsl?raw';
 import traceFrag from '../../shaders/trace.frag?raw';
@@ -17,8 +21,10 @@ import type { Scene } from '../../scene/types';
 import { Program } from '../gl/program';
 import type { ShaderChunk } from '../gl/shaderSource';
 import type { PingPong } from '../gl/targets';
-import { BLOCK, layoutDefines, type SamplerKind } from '../layout';
-import { causticGuides, packScene } from '../packScene';
+import { GUIDE_MARGIN, GUIDE_PROBABILITY, SMOOTH_ALPHA } from '../causticGuides';
+import { BLOCK_VEC4S, DATA_TEXELS, sceneLayoutDefines, sceneLayoutGlsl } from '../layout/scene';
+import { packScene, type SceneFeatures } from '../packScene';
+import { samplingDefines, type SamplerKind } from '../sampling';
 
 export const VERTEX_CHUNKS: ShaderChunk[] = [{ name: 'fullscreen.vert', source: fullscreenVert }];
 
@@ -28,14 +34,37 @@ export const SCENE_CHUNKS: ShaderChunk[] = [
   { name: 'common/rng.glsl', source: rngGlsl },
   { name: 'common/sampling.glsl', source: samplingGlsl },
   { name: 'scene/layout.glsl', source: layoutGlsl },
+  { name: 'generated/records.glsl', source: sceneLayoutGlsl() },
+  { name: 'scene/access.glsl', source: accessGlsl },
   { name: 'scene/intersect.glsl', source: intersectGlsl },
   { name: 'bsdf/ggx.glsl', source: ggxGlsl },
-  { name: 'bsdf/material.glsl', source: materialGlsl },
+  { name: 'bsdf/standard.glsl', source: standardGlsl },
+  { name: 'bsdf/dielectric.glsl', source: dielectricGlsl },
+  { name: 'bsdf/bsdf.glsl', source: bsdfGlsl },
+  { name: 'lights/sphere_emitter.glsl', source: sphereEmitterGlsl },
+  { name: 'lights/lights.glsl', source: lightsGlsl },
   { name: 'lights/caustic_guide.glsl', source: causticGuideGlsl },
-  { name: 'lights/sphere_light.glsl', source: sphereLightGlsl },
 ];
 
-const TRACE_CHUNKS: ShaderChunk[] = [
+/** Defines of the scene chunks, before the per-variant feature switches. */
+export function sceneDefines(sampler: SamplerKind = 'kronecker', russianRoulette = false): Record<string, string | number> {
+  return {
+    ...sceneLayoutDefines(),
+    ...samplingDefines(sampler, russianRoulette),
+    GUIDE_PROBABILITY: GUIDE_PROBABILITY.toFixed(6),
+    GUIDE_MARGIN: GUIDE_MARGIN.toFixed(6),
+    SMOOTH_ALPHA: SMOOTH_ALPHA.toExponential(),
+  };
+}
+
+/** The feature switches of one program variant. */
+export function featureDefines(features: SceneFeatures): Record<string, number> {
+  return { CAUSTIC_GUIDES: features.guides, HAS_DIELECTRIC: features.dielectric ? 1 : 0 };
+}
+
+const featureKey = (f: SceneFeatures) => `${f.guides}/${f.dielectric ? 1 : 0}`;
+
+export const TRACE_CHUNKS: ShaderChunk[] = [
   ...SCENE_CHUNKS,
   { name: 'camera.glsl', source: cameraGlsl },
   { name: 'integrator.glsl', source: integratorGlsl },
@@ -65,20 +94,21 @@ const SCENE_TEXTURE_UNIT = 1;
 
 export class TracePass {
   /**
-   * One program per number of caustic guides compiled in (0..MAX_GUIDES; see
-   * lights/caustic_guide.glsl). Those for 0 and 1 guide are compiled up front,
-   * so common edits never compile; the two-guide one (two guiding mirrors or
-   * lights in one scene) on first use.
+   * One program per set of features a scene uses (number of caustic guides,
+   * glass; see featureDefines): SwiftShader runs every masked branch, so
+   * code a scene does not need must not be compiled in. The variants for
+   * 0 and 1 guide without glass are compiled up front, so common edits never
+   * compile; the others once, on first use, then cached.
    */
-  private readonly programs = new Map<number, Program>();
+  private readonly programs = new Map<string, Program>();
   /** The variant for the current scene. */
   private program: Program;
   private readonly sceneBuffer: WebGLBuffer;
   /**
-   * The same packed scene as the uniform block, one RGBA32F texel per vec4
-   * (row 0): the loops over spheres and lights index it dynamically, and in
-   * SwiftShader a texelFetch is much cheaper than a dynamically indexed,
-   * bounds-checked uniform-block read (per-lane conditional loads).
+   * The scene's tables, one RGBA32F texel per vec4 (row 0): the loops over
+   * spheres index them dynamically, and in SwiftShader a texelFetch is much
+   * cheaper than a dynamically indexed, bounds-checked uniform-block read
+   * (per-lane conditional loads). The uniform block holds only constants.
    */
   private readonly sceneTexture: WebGLTexture;
 
@@ -89,32 +119,28 @@ export class TracePass {
     sampler: SamplerKind = 'kronecker',
     russianRoulette = false,
   ) {
-    this.defines = {
-      ...layoutDefines(),
-      LOW_DISCREPANCY: sampler === 'kronecker' ? 1 : 0,
-      RUSSIAN_ROULETTE: russianRoulette ? 1 : 0,
-    };
-    this.program = this.programFor(0);
-    this.programFor(1);
+    this.defines = sceneDefines(sampler, russianRoulette);
+    this.program = this.programFor({ guides: 0, dielectric: false });
+    this.programFor({ guides: 1, dielectric: false });
     this.sceneBuffer = gl.createBuffer()!;
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
-    gl.bufferData(gl.UNIFORM_BUFFER, BLOCK.size * 16, gl.DYNAMIC_DRAW);
+    gl.bufferData(gl.UNIFORM_BUFFER, BLOCK_VEC4S * 16, gl.DYNAMIC_DRAW);
     gl.bindBuffer(gl.UNIFORM_BUFFER, null);
     this.sceneTexture = gl.createTexture()!;
     gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
-    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, BLOCK.size, 1);
+    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, DATA_TEXELS, 1);
     gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
     gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
     gl.bindTexture(gl.TEXTURE_2D, null);
   }
 
-  private programFor(guides: number): Program {
-    let program = this.programs.get(guides);
+  private programFor(features: SceneFeatures): Program {
+    let program = this.programs.get(featureKey(features));
     if (!program) {
-      program = new Program(this.gl, VERTEX_CHUNKS, TRACE_CHUNKS, { ...this.defines, CAUSTIC_GUIDES: guides });
+      program = new Program(this.gl, VERTEX_CHUNKS, TRACE_CHUNKS, { ...this.defines, ...featureDefines(features) });
       const blockIndex = this.gl.getUniformBlockIndex(program.handle, 'SceneBlock');
       this.gl.uniformBlockBinding(program.handle, blockIndex, SCENE_BLOCK_BINDING);
-      this.programs.set(guides, program);
+      this.programs.set(featureKey(features), program);
     }
     return program;
   }
@@ -122,14 +148,14 @@ export class TracePass {
   /** Uploads the scene: geometry and materials to the uniform block, camera to uniforms. */
   setScene(scene: Scene, width: number, height: number): void {
     const gl = this.gl;
-    gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
     const packed = packScene(scene);
-    gl.bufferSubData(gl.UNIFORM_BUFFER, 0, packed);
+    gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
+    gl.bufferSubData(gl.UNIFORM_BUFFER, 0, packed.block);
     gl.bindBuffer(gl.UNIFORM_BUFFER, null);
     gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
-    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, BLOCK.size, 1, gl.RGBA, gl.FLOAT, packed);
+    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, DATA_TEXELS, 1, gl.RGBA, gl.FLOAT, packed.data);
     gl.bindTexture(gl.TEXTURE_2D, null);
-    this.program = this.programFor(causticGuides(scene).length);
+    this.program = this.programFor(packed.features);
     const frame = cameraFrame(scene.camera);
     for (const program of this.programs.values()) this.setCameraUniforms(program, scene, frame, width, height);
   }

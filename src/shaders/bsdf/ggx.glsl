@@ -8,7 +8,8 @@ float ggxD(vec3 h, float alpha) {
   return a2 / (PI * d * d);
 }
 
-// Smith G1 for direction v: 2 cos / (cos + sqrt(alpha^2 sin^2 + cos^2)).
+// Smith G1 for direction v above the surface (v.z > 0):
+// 2 cos / (cos + sqrt(alpha^2 sin^2 + cos^2)). Below it, pass vec3(v.xy, -v.z).
 float ggxG1(vec3 v, float alpha) {
   float a2 = alpha * alpha;
   float c2 = v.z * v.z;
@@ -29,10 +30,4 @@ vec3 sampleGgxVisibleNormal(vec3 wo, float alpha, vec2 disk) {
   float p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * disk.y;
   vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
   return normalize(vec3(alpha * nh.x, alpha * nh.y, max(1e-7, nh.z)));
-}
-
-// Density of wi = reflect(-wo, h) when h is sampled by its visible normals:
-// D_wo(h) / (4 wo.h) = G1(wo) D(h) / (4 cos wo).
-float ggxReflectionPdf(vec3 wo, vec3 h, float alpha) {
-  return ggxG1(wo, alpha) * ggxD(h, alpha) / (4.0 * wo.z);
 }

@@ -7,8 +7,10 @@
 // to cover the light's image in the convex mirror; otherwise the BSDF is
 // sampled as usual. Every sample is weighted by the mixture's exact pdf, and
 // the same pdf enters the MIS weights, so the estimate stays unbiased
-// whatever the cone (a poor cone only wastes samples). The (mirror, light)
-// pairs are chosen on the CPU per scene upload (src/render/packScene.ts).
+// whatever the cone (a poor cone only wastes samples). The mixture is built
+// on the BSDF interface (bsdfSampleDirection, bsdfEval): no lobe weight is
+// written here. The (mirror, emitting sphere) pairs are chosen on the CPU
+// per scene upload (src/render/causticGuides.ts).
 //
 // CAUSTIC_GUIDES (0, 1 or 2) is the number of guides compiled in: one
 // program per count (src/render/passes/trace.ts), because SwiftShader executes
@@ -58,10 +60,7 @@ vec4 guideCone(vec3 x, vec3 n, int guide) {
 }
 
 void buildGuides(vec3 x, vec3 n, Material m) {
-  // Rough (diffuse-like) vertices are guided most: a glossy lobe already
-  // concentrates its samples and would lose more than it gains; an ideal
-  // mirror (roughness 0) is not guided at all.
-  guideProbability = GUIDE_PROBABILITY * m.roughness;
+  guideProbability = GUIDE_PROBABILITY * bsdfGuideWeight(m);
   guideCone0 = guideCone(x, n, 0);
 #if CAUSTIC_GUIDES > 1
   guideCone1 = guideCone(x, n, 1);
@@ -94,7 +93,8 @@ float guidedPdf(float bsdfPdf, vec3 w) {
 BsdfSample sampleGuided(Material m, mat3 frame, vec3 wo, vec4 u, float choice) {
   vec2 circle = unitCircle(u.y);
   bool isDelta;
-  vec3 wiBsdf = sampleMaterialDirection(m, wo, u.xyz, circle, isDelta);
+  vec3 deltaWeight;
+  vec3 wiBsdf = bsdfSampleDirection(m, wo, u.xyz, circle, isDelta, deltaWeight);
 #if CAUSTIC_GUIDES > 1
   vec4 cone = choice >= 0.5 ? guideCone1 : guideCone0;
 #else
@@ -107,11 +107,11 @@ BsdfSample sampleGuided(Material m, mat3 frame, vec3 wo, vec4 u, float choice) {
   s.wi = guided ? worldGuide * frame : wiBsdf;
   s.isDelta = isDelta && !guided;
   float bsdfPdf;
-  vec3 f = evalMaterial(m, wo, s.wi, bsdfPdf);
+  vec3 f = bsdfEval(m, wo, s.wi, bsdfPdf);
   s.pdf = s.isDelta ? 0.0 : guidedPdf(bsdfPdf, guided ? worldGuide : frame * wiBsdf);
-  // The mirror lobe is drawn with probability (1 - p)(1 - r).
-  s.weight = s.isDelta ? m.color / (1.0 - guideProbability) : f / s.pdf;
-  s.valid = wo.z > 0.0 && (s.isDelta || (s.wi.z > 0.0 && s.pdf > 0.0));
+  // A delta lobe is drawn only when the guides are not: (1 - p) as often.
+  s.weight = s.isDelta ? deltaWeight / (1.0 - guideProbability) : f / s.pdf;
+  s.valid = s.wi != vec3(0.0) && (s.isDelta || (s.pdf > 0.0 && f != vec3(0.0)));
   return s;
 }
 
@@ -120,7 +120,7 @@ BsdfSample sampleGuided(Material m, mat3 frame, vec3 wo, vec4 u, float choice) {
 void buildGuides(vec3 x, vec3 n, Material m) {}
 float guidedPdf(float bsdfPdf, vec3 w) { return bsdfPdf; }
 BsdfSample sampleGuided(Material m, mat3 frame, vec3 wo, vec4 u, float choice) {
-  return sampleMaterial(m, wo, u.xyz);
+  return bsdfSample(m, wo, u.xyz);
 }
 
 #endif

@@ -1,16 +1,23 @@
+// Closest-hit and any-hit queries over every shape of the scene (spheres,
+// whose records include the `lights`; the ground plane). A Hit does not
+// depend on the kind of shape: the integrator sees a point, a normal and a
+// material, and asks the light interface (lights/lights.glsl) how likely
+// light sampling was to find the hit.
+
 const int HIT_NONE = 0;
 const int HIT_SPHERE = 1;
 const int HIT_GROUND = 2;
-const int HIT_LIGHT = 3;
 
 struct Hit {
   float t;
   int kind;
-  int index;      // sphere or light index
+  int index;        // sphere index (HIT_SPHERE)
   vec3 position;
-  vec3 normal;    // outward geometric normal of the surface
-  float scale;    // size of the hit object, for the self-intersection offset
-  vec4 geometry;  // of the sphere or light hit: [center, radius]
+  vec3 normal;      // geometric normal on the outside of the surface
+  float scale;      // size of the hit object, for the self-intersection offset
+  vec4 geometry;    // the sphere hit: [center, radius]
+  int material;     // index into the material table
+  float emitterPdf; // probability that light sampling picks the hit surface (0: not an emitter)
 };
 
 // Nearest t > 0 where the ray (unit direction) meets the sphere, or
@@ -49,7 +56,7 @@ float groundHitT(vec3 origin, vec3 direction) {
 }
 
 Hit intersectScene(vec3 origin, vec3 direction) {
-  // The loops keep only the distance and the object's index; the rest of
+  // The loop keeps only the distance and the sphere's index; the rest of
   // the hit is derived once afterwards.
   float tSphere = INFINITY;
   int sphere = 0;
@@ -58,25 +65,17 @@ Hit intersectScene(vec3 origin, vec3 direction) {
     sphere = t < tSphere ? i : sphere;
     tSphere = min(t, tSphere);
   }
-  float tLight = INFINITY;
-  int light = 0;
-  for (int i = 0; i < lightCount(); i++) {
-    float t = sphereHitT(origin, direction, lightGeometry(i));
-    light = t < tLight ? i : light;
-    tLight = min(t, tLight);
-  }
   float tGround = groundHitT(origin, direction);
 
-  bool isLight = tLight < tSphere;
-  float tObject = min(tSphere, tLight);
-  bool isGround = tGround < tObject;
+  bool isGround = tGround < tSphere;
   Hit hit;
-  hit.t = min(tObject, tGround);
-  hit.kind = hit.t == INFINITY ? HIT_NONE : isGround ? HIT_GROUND : isLight ? HIT_LIGHT : HIT_SPHERE;
-  hit.index = isLight ? light : sphere;
+  hit.t = min(tSphere, tGround);
+  hit.kind = hit.t == INFINITY ? HIT_NONE : isGround ? HIT_GROUND : HIT_SPHERE;
+  hit.index = sphere;
 
   // Both surfaces are derived and the right one selected (see sphereHitT).
-  vec4 geometry = sceneData(isLight ? lightTexel(light, LIGHT_GEOMETRY) : sphereTexel(sphere, SPHERE_GEOMETRY));
+  SphereRecord record = loadSphere(sphere);
+  vec4 geometry = vec4(record.center, record.radius);
   vec3 p = origin + hit.t * direction;
   vec3 sphereNormal = normalize(p - geometry.xyz);
   vec3 spherePosition = geometry.xyz + geometry.w * sphereNormal;  // re-projected onto the surface
@@ -85,6 +84,8 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   hit.position = isGround ? groundPosition : spherePosition;
   hit.scale = isGround ? abs(groundHeight()) : geometry.w;
   hit.geometry = geometry;
+  hit.material = isGround ? groundMaterial() : record.material;
+  hit.emitterPdf = isGround ? 0.0 : record.emitterPdf;
   return hit;
 }
 
@@ -101,16 +102,15 @@ float segmentClearance(vec3 origin, vec3 direction, float tMax, vec4 sphere) {
   return dot(closest, closest) - sphere.w * sphere.w;
 }
 
-// True when something blocks the segment from origin to origin + tMax * direction.
-// `skipLight` is the light the segment ends on.
-bool occluded(vec3 origin, vec3 direction, float tMax, int skipLight) {
+// True when something blocks the segment from origin to origin + tMax *
+// direction. Every surface blocks, glass included (as in Mitsuba's path
+// tracer: light through glass is found by BSDF sampling only). `skipSphere`
+// is the sphere the segment ends on (-1: none).
+bool occluded(vec3 origin, vec3 direction, float tMax, int skipSphere) {
   float clearance = INFINITY;
   for (int i = 0; i < sphereCount(); i++) {
-    clearance = min(clearance, segmentClearance(origin, direction, tMax, sphereGeometry(i)));
-  }
-  for (int i = 0; i < lightCount(); i++) {
-    float c = segmentClearance(origin, direction, tMax, lightGeometry(i));
-    clearance = min(clearance, i == skipLight ? INFINITY : c);
+    float c = segmentClearance(origin, direction, tMax, sphereGeometry(i));
+    clearance = min(clearance, i == skipSphere ? INFINITY : c);
   }
   return clearance < 0.0 || groundHitT(origin, direction) < tMax;
 }

@@ -20,16 +20,16 @@ void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   uint index = uint(pixel.y) * uint(uGrid.x) + uint(pixel.x);
   rngBeginSample(uvec2(index, 0u), 0u, uSeed);
-  Material material = Material(vec3(1.0), uParams.x);
+  Material material = Material(vec3(1.0), uParams.x, vec3(0.0), int(uParams.z), uParams.y);
   if (uKernel == KERNEL_SAMPLECONE) {
     outValue = vec4(sampleUniformCone(rand4().xy, uParams.x), uniformConePdf(uParams.x));
   } else if (uKernel == KERNEL_SAMPLEMATERIAL) {
-    BsdfSample s = sampleMaterial(material, uWo, rand4().xyz);
+    BsdfSample s = bsdfSample(material, uWo, rand4().xyz);
     outValue = s.valid ? vec4(s.wi, s.isDelta ? -1.0 : s.pdf) : vec4(0.0);
   } else {
     vec3 wi = gridDirection(vec2(pixel));
     float pdf;
-    evalMaterial(material, uWo, wi, pdf);
+    bsdfEval(material, uWo, wi, pdf);
     outValue = vec4(wi, pdf);
   }
 }

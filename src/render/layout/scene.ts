@@ -1,0 +1,124 @@
+/**
+ * The packed scene, defined once. Tables (materials, spheres, emitters) live
+ * in one RGBA32F data texture read with texelFetch; per-scene constants (the
+ * header and the caustic guides) live in a small uniform block read with
+ * constant indices. `packScene` writes both; the shaders read them through
+ * the defines and loaders generated here (`sceneLayoutDefines`,
+ * `sceneLayoutGlsl`).
+ */
+import { MAX_LIGHTS, MAX_MESHES, MAX_SPHERES } from '../../scene/limits';
+import { defineRecord, recordDefines, recordGlsl, type RecordLayout } from './records';
+
+/** Material type tags (Material.type in GLSL). */
+export const MATERIAL_TYPES = { standard: 0, dielectric: 1, emitterOnly: 2 } as const;
+/** Emitter kinds (Emitter.kind in GLSL). */
+export const EMITTER_KINDS = { sphere: 0 } as const;
+
+/** A row of the material table: BSDF parameters and emission. */
+export const MATERIAL = defineRecord('Material', [
+  ['color', 'vec3'],
+  ['roughness', 'float'],
+  ['emission', 'vec3'],
+  ['type', 'int'],
+  ['ior', 'float'],
+]);
+
+/**
+ * A sphere (also each `lights` entry, with an emitter-only material).
+ * `emitterPdf` is the probability that light sampling picks this sphere
+ * (0 when it does not emit), for the MIS weight of a hit on it.
+ */
+export const SPHERE = defineRecord('SphereRecord', [
+  ['center', 'vec3'],
+  ['radius', 'float'],
+  ['material', 'int'],
+  ['emitterPdf', 'float'],
+]);
+
+/** An entry of the light-sampling table; `pdf` is the probability of picking it. */
+export const EMITTER = defineRecord('Emitter', [
+  ['center', 'vec3'],
+  ['radius', 'float'],
+  ['radiance', 'vec3'],
+  ['pdf', 'float'],
+  ['kind', 'int'],
+  ['primitive', 'int'],
+]);
+
+/**
+ * Slot i of the alias table (Walker) that picks emitters in proportion to
+ * power: keep i when frac(u * n) < aliasThreshold, else take `alias`.
+ */
+export const EMITTER_CHOICE = defineRecord('EmitterChoice', [
+  ['aliasThreshold', 'float'],
+  ['alias', 'int'],
+]);
+
+/** Per-scene constants (uniform block `SceneHeader`, `uHeader[]`). */
+export const HEADER = defineRecord('Header', [
+  ['sphereCount', 'int'],
+  ['emitterCount', 'int'],
+  ['groundEnabled', 'int'],
+  ['guideCount', 'int'],
+  ['groundHeight', 'float'],
+  ['groundMaterial', 'int'],
+  ['environment', 'vec3'],
+]);
+
+/** caustic_guide.glsl holds exactly two named cones: change both together. */
+export const MAX_GUIDES = 2;
+/** vec4 slots of one guide: the mirror's and the light's [center.xyz, radius]. */
+export const GUIDE_FIELDS = { MIRROR: 0, LIGHT: 1 } as const;
+export const GUIDE_VEC4S = Object.keys(GUIDE_FIELDS).length;
+
+/** Lights become spheres; each sphere, light, mesh and the ground has its own material. */
+export const MAX_SCENE_SPHERES = MAX_SPHERES + MAX_LIGHTS;
+export const MAX_MATERIALS = MAX_SCENE_SPHERES + MAX_MESHES + 1;
+export const MAX_EMITTERS = MAX_SCENE_SPHERES;
+
+/** First texel of each table in the data texture. */
+export const SECTIONS = {
+  materials: 0,
+  spheres: MAX_MATERIALS * MATERIAL.texels,
+  emitters: MAX_MATERIALS * MATERIAL.texels + MAX_SCENE_SPHERES * SPHERE.texels,
+  emitterChoices: MAX_MATERIALS * MATERIAL.texels + MAX_SCENE_SPHERES * SPHERE.texels + MAX_EMITTERS * EMITTER.texels,
+} as const;
+/** Width of the data texture (one row). */
+export const DATA_TEXELS = SECTIONS.emitterChoices + MAX_EMITTERS * EMITTER_CHOICE.texels;
+/** vec4s of the uniform block: the header, then the guides. */
+export const BLOCK_VEC4S = HEADER.texels + MAX_GUIDES * GUIDE_VEC4S;
+
+const tagDefines = (prefix: string, tags: Record<string, number>) =>
+  Object.fromEntries(Object.entries(tags).map(([name, value]) => [`${prefix}_${name.replace(/([a-z])([A-Z])/g, '$1_$2').toUpperCase()}`, value]));
+
+export function sceneLayoutDefines(): Record<string, number> {
+  return {
+    ...recordDefines(MATERIAL),
+    ...recordDefines(SPHERE),
+    ...recordDefines(EMITTER),
+    ...recordDefines(EMITTER_CHOICE),
+    ...tagDefines('MATERIAL', MATERIAL_TYPES),
+    ...tagDefines('EMITTER', EMITTER_KINDS),
+    MATERIALS_FIRST: SECTIONS.materials,
+    SPHERES_FIRST: SECTIONS.spheres,
+    EMITTERS_FIRST: SECTIONS.emitters,
+    EMITTER_CHOICES_FIRST: SECTIONS.emitterChoices,
+    MAX_SCENE_SPHERES,
+    HEADER_TEXELS: HEADER.texels,
+    BLOCK_VEC4S,
+    MAX_GUIDES,
+    GUIDE_VEC4S,
+    GUIDE_MIRROR: GUIDE_FIELDS.MIRROR,
+    GUIDE_LIGHT: GUIDE_FIELDS.LIGHT,
+  };
+}
+
+/** The generated GLSL: a struct and a loader per record (see records.ts). */
+export function sceneLayoutGlsl(): string {
+  const tables: RecordLayout[] = [MATERIAL, SPHERE, EMITTER, EMITTER_CHOICE];
+  return [
+    '// Generated from src/render/layout/scene.ts: do not edit.',
+    ...tables.map((layout) => recordGlsl(layout, 'sceneData')),
+    recordGlsl(HEADER, 'headerTexel'),
+  ].join('\n');
+}

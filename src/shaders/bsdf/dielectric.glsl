@@ -1,0 +1,88 @@
+// The dielectric material: the boundary of a transparent solid, exactly
+// Mitsuba 3's `dielectric` (roughness 0) and `roughdielectric` (GGX,
+// alpha = r^2, visible-normal sampling; Walter et al. 2007) with
+// int_ior = m.ior, ext_ior = 1, specular_transmittance = m.color, in
+// radiance mode: refracted radiance is multiplied by 1 / ior^2 entering the
+// solid and by ior^2 leaving it. Two-sided: wo.z < 0 is a direction inside
+// the solid (the frame's normal points outside).
+
+// Unpolarized Fresnel reflectance at a boundary with relative index `eta`
+// (inside / outside), for cosThetaI measured against the outside normal
+// (negative from inside); Mitsuba's fresnel(). cosThetaT gets the
+// transmitted cosine (sign opposite to cosThetaI; 0 at total internal
+// reflection, where the result is 1), etaTI = eta_i / eta_t (Mitsuba's
+// eta_ti: Snell's sin_t = etaTI sin_i).
+float fresnelDielectric(float cosThetaI, float eta, out float cosThetaT, out float etaTI) {
+  bool outside = cosThetaI >= 0.0;
+  float etaIT = outside ? eta : 1.0 / eta;
+  etaTI = outside ? 1.0 / eta : eta;
+  float cosT2 = 1.0 - (1.0 - cosThetaI * cosThetaI) * (etaTI * etaTI);
+  float cosI = abs(cosThetaI);
+  float cosT = sqrt(max(cosT2, 0.0));
+  float as = (cosI - etaIT * cosT) / (cosI + etaIT * cosT);
+  float ap = (cosT - etaIT * cosI) / (cosT + etaIT * cosI);
+  float r = 0.5 * (as * as + ap * ap);
+  cosThetaT = outside ? -cosT : cosT;
+  return cosI == 0.0 ? 1.0 : r;
+}
+
+float dielectricAlpha(Material m) { return m.roughness * m.roughness; }
+bool dielectricIsDelta(Material m) { return dielectricAlpha(m) < SMOOTH_ALPHA; }
+
+// Smith G1 on either side of the surface.
+float ggxG1Either(vec3 v, float alpha) { return ggxG1(vec3(v.xy, abs(v.z)), alpha); }
+
+// f(wo, wi) |cos wi| of the rough dielectric (0 for the smooth one, all of
+// which is a delta); `pdf` receives the density of dielectricSampleDirection
+// drawing wi (as Mitsuba's roughdielectric evaluates them).
+vec3 dielectricEval(Material m, vec3 wo, vec3 wi, out float pdf) {
+  pdf = 0.0;
+  if (dielectricIsDelta(m) || wo.z == 0.0 || wi.z == 0.0) return vec3(0.0);
+  float alpha = dielectricAlpha(m);
+  bool isReflection = wo.z * wi.z > 0.0;
+  float eta = wo.z > 0.0 ? m.ior : 1.0 / m.ior;
+  vec3 h = normalize(wo + wi * (isReflection ? 1.0 : eta));
+  h = h.z < 0.0 ? -h : h;
+  float woh = dot(wo, h);
+  float wih = dot(wi, h);
+  // A microfacet is seen from one side only (Mitsuba's smith_g1 and pdf).
+  if (woh * wo.z <= 0.0 || wih * wi.z <= 0.0) return vec3(0.0);
+  float cosThetaT, etaTI;
+  float F = fresnelDielectric(woh, m.ior, cosThetaT, etaTI);
+  float d = ggxD(h, alpha);
+  float g1o = ggxG1Either(wo, alpha);
+  float g = g1o * ggxG1Either(wi, alpha);
+  // Density of the visible normal h seen from wo.
+  float visible = d * g1o * abs(woh) / abs(wo.z);
+  if (isReflection) {
+    pdf = visible * F / (4.0 * abs(wih));
+    return vec3(F * d * g / (4.0 * abs(wo.z)));
+  }
+  float denom = woh + eta * wih;
+  float jacobian = eta * eta * abs(wih) / (denom * denom);
+  pdf = visible * (1.0 - F) * jacobian;
+  // (1 / eta^2): the radiance-mode solid-angle compression.
+  float value = abs((1.0 - F) * d * g * woh * wih / (wo.z * denom * denom));
+  return m.color * value;
+}
+
+// Draws wi: a microfacet normal (visible normals; the macro normal when
+// smooth), then reflection with the Fresnel probability F, else
+// refraction. For the smooth boundary `isDelta` is set and `deltaWeight` is
+// f cos / pdf: 1 for reflection, color / eta^2 (radiance mode) for
+// refraction. u: .x and `circle` the disk point, .z the lobe.
+vec3 dielectricSampleDirection(Material m, vec3 wo, vec3 u, vec2 circle, out bool isDelta, out vec3 deltaWeight) {
+  isDelta = dielectricIsDelta(m);
+  float side = wo.z < 0.0 ? -1.0 : 1.0;
+  vec3 woUp = side * wo;
+  vec3 h = isDelta ? vec3(0.0, 0.0, 1.0) : sampleGgxVisibleNormal(woUp, dielectricAlpha(m), sqrt(u.x) * circle);
+  float woh = dot(wo, h);
+  float cosThetaT, etaTI;
+  float F = fresnelDielectric(woh, m.ior, cosThetaT, etaTI);
+  bool reflects = u.z < F;
+  deltaWeight = reflects ? vec3(1.0) : m.color * (etaTI * etaTI);
+  vec3 refracted = h * (woh * etaTI + cosThetaT) - wo * etaTI;
+  return reflects ? 2.0 * woh * h - wo : refracted;
+}
+
+bool dielectricHasSmoothLobe(Material m) { return !dielectricIsDelta(m); }

@@ -1,0 +1,53 @@
+// The standard material (scene format version 1):
+//   f = (1 - r) * Specular + r * Lambert, both tinted by color,
+//   Specular = GGX conductor, alpha = r^2, separable Smith G, no Fresnel.
+// One-sided, as in Mitsuba: seen from below its surface (wo.z <= 0) it
+// reflects nothing. The lobes are chosen with probabilities (1 - r) and r;
+// the pdf of a direction is the mixture of both lobes' pdfs.
+//
+// Below SMOOTH_ALPHA the GGX lobe is treated as an ideal mirror (as pbrt-v4
+// does): its peak is then far narrower than a pixel's footprint, and the
+// mirror is exact instead of a badly conditioned huge-D/tiny-pdf pair.
+
+float standardAlpha(Material m) { return m.roughness * m.roughness; }
+bool standardIsDelta(Material m) { return standardAlpha(m) < SMOOTH_ALPHA; }
+
+// f(wo, wi) * cos(wi) of the non-delta lobes; `pdf` receives their mixture
+// density of sampling wi.
+vec3 standardEval(Material m, vec3 wo, vec3 wi, out float pdf) {
+  pdf = 0.0;
+  if (wo.z <= 0.0 || wi.z <= 0.0) return vec3(0.0);
+  float r = m.roughness;
+  vec3 f = m.color * (r * INV_PI * wi.z);
+  pdf = r * INV_PI * wi.z;
+  if (r < 1.0 && !standardIsDelta(m)) {
+    float alpha = standardAlpha(m);
+    vec3 h = normalize(wo + wi);
+    float d = ggxD(h, alpha);
+    float g1o = ggxG1(wo, alpha);
+    // D G1(wo) G1(wi) / (4 cos wo cos wi), times cos wi.
+    f += m.color * ((1.0 - r) * d * g1o * ggxG1(wi, alpha) / (4.0 * wo.z));
+    pdf += (1.0 - r) * g1o * d / (4.0 * wo.z);
+  }
+  return f;
+}
+
+// Draws a direction from the lobe mixture (u.z picks the lobe, u.x the
+// radius and `circle` = unitCircle(u.y) the angle of a point on the disk).
+// For the ideal mirror, `isDelta` is set and `deltaWeight` = f cos / pdf
+// (the (1 - r) of the lobe cancels its choice).
+vec3 standardSampleDirection(Material m, vec3 wo, vec3 u, vec2 circle, out bool isDelta, out vec3 deltaWeight) {
+  bool chooseSpecular = u.z >= m.roughness;
+  isDelta = chooseSpecular && standardIsDelta(m);
+  deltaWeight = m.color;
+  // One polar disk point serves both lobes (one sin/cos pair per bounce):
+  // projected up it is cosine-distributed, warped it is a visible normal.
+  float r2 = u.x;
+  vec2 disk = sqrt(r2) * circle;
+  vec3 h = isDelta ? vec3(0.0, 0.0, 1.0) : sampleGgxVisibleNormal(wo, standardAlpha(m), disk);
+  vec3 wi = chooseSpecular ? reflect(-wo, h) : vec3(disk, sqrt(1.0 - r2));
+  return wo.z > 0.0 ? wi : vec3(0.0);
+}
+
+// Light sampling can contribute where some lobe is not a Dirac delta.
+bool standardHasSmoothLobe(Material m) { return m.roughness > 0.0; }

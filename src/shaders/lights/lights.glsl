@@ -1,0 +1,33 @@
+// The light interface: every emitter (the `lights`, emissive spheres) sits
+// in one table and is picked in proportion to its power (an alias table,
+// src/render/aliasTable.ts). The integrator calls sampleLight and lightPdf
+// and never knows which kind of emitter it holds.
+
+struct LightSample {
+  vec3 direction;   // world, unit, from x towards the emitter
+  float distance;   // to the emitter along `direction`
+  vec3 radiance;    // emitted towards x
+  float pdf;        // solid angle at x, emitter choice included; 0 = no sample
+  int skipSphere;   // the sphere the shadow ray ends on (-1: none)
+};
+
+// u: .xy the point on the emitter, .z the choice of emitter.
+LightSample sampleLight(vec3 x, vec3 u) {
+  LightSample s;
+  int count = emitterCount();
+  float scaled = u.z * float(count);
+  int slot = clamp(int(scaled), 0, max(count - 1, 0));
+  EmitterChoice choice = loadEmitterChoice(slot);
+  Emitter e = loadEmitter(scaled - float(slot) < choice.aliasThreshold ? slot : choice.alias);
+  float pdf;
+  s.direction = sampleSphereEmitter(x, vec4(e.center, e.radius), u.xy, pdf, s.distance);
+  s.radiance = e.radiance;
+  s.pdf = count > 0 ? e.pdf * pdf : 0.0;
+  s.skipSphere = e.primitive;
+  return s;
+}
+
+// Density of sampleLight drawing, from x, the direction towards `hit`.
+float lightPdf(vec3 x, Hit hit) {
+  return hit.kind == HIT_SPHERE ? hit.emitterPdf * sphereEmitterPdf(x, hit.geometry) : 0.0;
+}

@@ -1,0 +1,15 @@
+// Accessors of the packed scene (scene/layout.glsl and the generated records).
+
+int sphereCount() { return readHeader(0).sphereCount; }
+int emitterCount() { return readHeader(0).emitterCount; }
+bool groundEnabled() { return readHeader(0).groundEnabled != 0; }
+float groundHeight() { return readHeader(0).groundHeight; }
+int groundMaterial() { return readHeader(0).groundMaterial; }
+vec3 environmentRadiance() { return readHeader(0).environment; }
+
+int sphereTexel(int i, int field) { return SPHERES_FIRST + i * SPHERE_RECORD_TEXELS + field; }
+vec4 sphereGeometry(int i) { return sceneData(sphereTexel(i, SPHERE_RECORD_CENTER_TEXEL)); }
+SphereRecord loadSphere(int i) { return readSphereRecord(sphereTexel(i, 0)); }
+Material loadMaterial(int i) { return readMaterial(MATERIALS_FIRST + i * MATERIAL_TEXELS); }
+Emitter loadEmitter(int i) { return readEmitter(EMITTERS_FIRST + i * EMITTER_TEXELS); }
+EmitterChoice loadEmitterChoice(int i) { return readEmitterChoice(EMITTER_CHOICES_FIRST + i * EMITTER_CHOICE_TEXELS); }
