@@ -10,7 +10,8 @@ import type { Scene } from '../scene/types';
 import { runKernel, type KernelRequest } from './kernels';
 import { createContext } from '../render/gl/context';
 import { Program, ShaderCompileError } from '../render/gl/program';
-import { SCENE_CHUNKS, VERTEX_CHUNKS, sceneDefines } from '../render/passes/trace';
+import { sceneDefines } from '../render/shaderChunks';
+import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/shaderSources';
 
 export interface LoadOptions {
   width: number;
