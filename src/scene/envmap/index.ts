@@ -1,0 +1,1 @@
+export { decodeEnvironmentMap, zeroInvalidTexels, MAX_ENVIRONMENT_WIDTH, MAX_ENVIRONMENT_HEIGHT } from './decode';

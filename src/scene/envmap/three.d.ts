@@ -1,0 +1,11 @@
+// The two pieces of three.js the OpenEXR decoder uses, typed narrowly here
+// rather than pulling in @types/three for them.
+declare module 'three/examples/jsm/loaders/EXRLoader.js' {
+  export class EXRLoader {
+    setDataType(type: number): this;
+    parse(buffer: ArrayBuffer): { width: number; height: number; data: Float32Array | Uint16Array };
+  }
+}
+declare module 'three' {
+  export const FloatType: number;
+}
