@@ -1,0 +1,187 @@
+/**
+ * The importance-sampling distribution of an environment map: piecewise
+ * constant over cells in (u, v), each row weighted by its solid angle,
+ * drawn in constant time by alias tables (Walker/Vose), so the shader needs
+ * one texel fetch per dimension to sample and one per dimension for the pdf.
+ *
+ * Cells are the patches of the map's bilinear lookup (scene format): cell
+ * (i, j) spans u from the centre of column i to the centre of column i + 1
+ * (wrapping: u in [(i + 0.5) / W, (i + 1.5) / W]) and v from row j to row
+ * j + 1 (v in [j / R, (j + 1) / R], R = H - 1 rows of cells, rows sitting at
+ * v = j / (H - 1)). Its weight is the mean luminance of its four corner
+ * texels, which is exactly the mean of the bilinear radiance over the patch:
+ * the pdf is zero only where the radiance is zero over the whole patch.
+ *
+ * Densities: pdf(u, v) = marginal[j] * conditional[i | j] * W * R on the
+ * unit square; per solid angle pdf(u, v) / (2 pi^2 sin theta), theta = pi v.
+ *
+ * Texture layout (RGBA32F, one texel per entry, ready to upload):
+ *   marginal:    R x 1 texels, (alias probability, alias index, probability of the row, CDF at the row's end)
+ *   conditional: W x R texels, (alias probability, alias index, probability of the column in its row, CDF at the column's end)
+ */
+import type { EnvironmentImage } from '../types';
+
+export interface EnvironmentDistribution {
+  /** Columns of cells (the map's width). */
+  width: number;
+  /** Rows of cells: the map's height - 1 (1 for a one-row map). */
+  rows: number;
+  marginal: Float32Array;
+  conditional: Float32Array;
+  /**
+   * The integral of the map's luminance over the sphere (per steradian
+   * texel units x sr) of the piecewise-constant approximation: the map's
+   * power up to the scene's scale, for choosing between lights.
+   */
+  integral: number;
+}
+
+/** Luminance of row y into `out` (texels are >= 0 after decoding; clamped again for safety). */
+function rowLuminance(image: EnvironmentImage, y: number, out: Float64Array): void {
+  const { rgb, width } = image;
+  for (let x = 0, i = y * width * 3; x < width; x++, i += 3) {
+    const l = 0.2126 * rgb[i] + 0.7152 * rgb[i + 1] + 0.0722 * rgb[i + 2];
+    out[x] = l > 0 ? l : 0;
+  }
+}
+
+/** Cell weights of a row of cells: the mean of each cell's four corner texels (columns wrap). */
+function cellMeans(top: Float64Array, bottom: Float64Array, width: number, out: Float64Array): number {
+  let sum = 0;
+  for (let i = 0; i < width; i++) {
+    const next = i + 1 < width ? i + 1 : 0;
+    const v = (top[i] + top[next] + bottom[i] + bottom[next]) * 0.25;
+    out[i] = v;
+    sum += v;
+  }
+  return sum;
+}
+
+/** Solid angle of band j over 2 pi: cos(theta_j) - cos(theta_j+1), the integral of sin theta. */
+function bandWeight(j: number, rows: number): number {
+  return Math.cos((Math.PI * j) / rows) - Math.cos((Math.PI * (j + 1)) / rows);
+}
+
+/**
+ * Vose's alias method for `n` probabilities in `probability` (summing to 1),
+ * written into `table` at `offset` with 4 floats per entry: x = alias
+ * probability (keep the entry itself when the remapped sample is below it),
+ * y = alias index, z = probability, w = CDF at the entry's end.
+ */
+function writeAliasTable(probability: Float64Array, n: number, table: Float32Array, offset: number, small: Int32Array, large: Int32Array, scaled: Float64Array): void {
+  let smallCount = 0;
+  let largeCount = 0;
+  let cdf = 0;
+  for (let i = 0; i < n; i++) {
+    scaled[i] = probability[i] * n;
+    if (scaled[i] < 1) small[smallCount++] = i;
+    else large[largeCount++] = i;
+    cdf += probability[i];
+    const t = offset + i * 4;
+    table[t + 2] = probability[i];
+    table[t + 3] = i === n - 1 ? 1 : cdf;
+  }
+  while (smallCount > 0 && largeCount > 0) {
+    const less = small[--smallCount];
+    const more = large[largeCount - 1];
+    table[offset + less * 4] = scaled[less];
+    table[offset + less * 4 + 1] = more;
+    scaled[more] = scaled[more] + scaled[less] - 1;
+    if (scaled[more] < 1) {
+      largeCount--;
+      small[smallCount++] = more;
+    }
+  }
+  // What is left is 1 up to rounding: keeps itself.
+  while (largeCount > 0) {
+    const i = large[--largeCount];
+    table[offset + i * 4] = 1;
+    table[offset + i * 4 + 1] = i;
+  }
+  while (smallCount > 0) {
+    const i = small[--smallCount];
+    table[offset + i * 4] = 1;
+    table[offset + i * 4 + 1] = i;
+  }
+}
+
+export function buildEnvironmentDistribution(image: EnvironmentImage): EnvironmentDistribution {
+  const { width, height } = image;
+  const rows = Math.max(height - 1, 1);
+  const conditional = new Float32Array(width * rows * 4);
+  const marginal = new Float32Array(rows * 4);
+  const longest = Math.max(width, rows);
+  const scratch = { small: new Int32Array(longest), large: new Int32Array(longest), scaled: new Float64Array(longest) };
+  const cell = new Float64Array(width);
+  const rowWeight = new Float64Array(rows);
+  let top = new Float64Array(width);
+  let bottom = new Float64Array(width);
+  rowLuminance(image, 0, bottom);
+  let integral = 0;
+  for (let j = 0; j < rows; j++) {
+    [top, bottom] = [bottom, top];
+    rowLuminance(image, Math.min(j + 1, height - 1), bottom);
+    const sum = cellMeans(top, bottom, width, cell);
+    // A black row is sampled uniformly (it gets no marginal mass unless the whole map is black).
+    if (sum > 0) for (let i = 0; i < width; i++) cell[i] /= sum;
+    else cell.fill(1 / width);
+    writeAliasTable(cell, width, conditional, j * width * 4, scratch.small, scratch.large, scratch.scaled);
+    // Mean luminance of the row times its solid angle / (2 pi).
+    rowWeight[j] = (sum / width) * bandWeight(j, rows);
+    integral += rowWeight[j] * 2 * Math.PI;
+  }
+  let total = rowWeight.reduce((a, b) => a + b, 0);
+  // A black map: uniform over the sphere (the caller gives it no light-selection probability anyway).
+  if (!(total > 0)) {
+    for (let j = 0; j < rows; j++) rowWeight[j] = bandWeight(j, rows);
+    total = 2;
+  }
+  for (let j = 0; j < rows; j++) rowWeight[j] /= total;
+  writeAliasTable(rowWeight, rows, marginal, 0, scratch.small, scratch.large, scratch.scaled);
+  return { width, rows, marginal, conditional, integral };
+}
+
+/** Alias-table draw of one entry from u in [0, 1): the entry and u remapped to [0, 1) within it. */
+function drawAlias(table: Float32Array, offset: number, n: number, u: number): { index: number; t: number } {
+  const x = u * n;
+  const i = Math.min(Math.floor(x), n - 1);
+  const f = Math.min(x - i, 1);
+  const keep = table[offset + i * 4];
+  if (f < keep) return { index: i, t: f / keep };
+  return { index: table[offset + i * 4 + 1], t: Math.min((f - keep) / (1 - keep), 1) };
+}
+
+export interface EnvironmentUvSample {
+  /** Map coordinates (scene format: u across from the left, v down from the top). */
+  u: number;
+  v: number;
+  /** Density on the unit square of (u, v). */
+  pdfUv: number;
+}
+
+/** TypeScript reference of the shader's sampler: a point of the map drawn from the distribution. */
+export function sampleEnvironmentDistribution(d: EnvironmentDistribution, u1: number, u2: number): EnvironmentUvSample {
+  const row = drawAlias(d.marginal, 0, d.rows, u2);
+  const column = drawAlias(d.conditional, row.index * d.width * 4, d.width, u1);
+  const u = ((column.index + column.t + 0.5) / d.width) % 1;
+  const v = (row.index + row.t) / d.rows;
+  return { u, v, pdfUv: cellPdfUv(d, column.index, row.index) };
+}
+
+function cellPdfUv(d: EnvironmentDistribution, column: number, row: number): number {
+  return d.marginal[row * 4 + 2] * d.conditional[(row * d.width + column) * 4 + 2] * d.width * d.rows;
+}
+
+/** Density on the unit square at map coordinates (u, v). */
+export function environmentDistributionPdfUv(d: EnvironmentDistribution, u: number, v: number): number {
+  const shifted = u - 0.5 / d.width;
+  const column = Math.min(Math.floor((shifted - Math.floor(shifted)) * d.width), d.width - 1);
+  const row = Math.min(Math.max(Math.floor(v * d.rows), 0), d.rows - 1);
+  return cellPdfUv(d, column, row);
+}
+
+/** Solid-angle density at map coordinates (u, v): the (u, v) density over the Jacobian 2 pi^2 sin theta. */
+export function environmentDistributionPdf(d: EnvironmentDistribution, u: number, v: number): number {
+  const sinTheta = Math.sin(Math.PI * v);
+  return sinTheta > 0 ? environmentDistributionPdfUv(d, u, v) / (2 * Math.PI * Math.PI * sinTheta) : 0;
+}
