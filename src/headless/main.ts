@@ -12,6 +12,8 @@ import { createContext } from '../render/gl/context';
 import { Program, ShaderCompileError } from '../render/gl/program';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/passes/trace';
 import { layoutDefines } from '../render/layout';
+// Registers window.pathtraceEnvironmentKernels (environment-map test kernels).
+import './environmentKernels';
 
 export interface LoadOptions {
   width: number;

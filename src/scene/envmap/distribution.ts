@@ -16,8 +16,14 @@
  * unit square; per solid angle pdf(u, v) / (2 pi^2 sin theta), theta = pi v.
  *
  * Texture layout (RGBA32F, one texel per entry, ready to upload):
- *   marginal:    R x 1 texels, (alias probability, alias index, probability of the row, CDF at the row's end)
- *   conditional: W x R texels, (alias probability, alias index, probability of the column in its row, CDF at the column's end)
+ *   marginal:    R x 1 texels, one per row of cells
+ *   conditional: W x R texels, one per cell, a table per row
+ * each texel (keep probability, alias index, probability of the entry,
+ * probability of its alias): a draw costs one fetch per dimension and
+ * returns the probability of what it drew. Alias tables rather than CDFs:
+ * a CDF needs a binary search (12 dependent fetches in a loop for 4k
+ * entries, every step run by all lanes on SwiftShader) or a tabulated
+ * inverse, which is only approximately the density it claims.
  */
 import type { EnvironmentImage } from '../types';
 
@@ -64,22 +70,18 @@ function bandWeight(j: number, rows: number): number {
 
 /**
  * Vose's alias method for `n` probabilities in `probability` (summing to 1),
- * written into `table` at `offset` with 4 floats per entry: x = alias
- * probability (keep the entry itself when the remapped sample is below it),
- * y = alias index, z = probability, w = CDF at the entry's end.
+ * written into `table` at `offset` with 4 floats per entry: x = keep
+ * probability (the entry itself when the remapped sample is below it, else
+ * its alias), y = alias index, z = probability, w = probability of the alias.
  */
 function writeAliasTable(probability: Float64Array, n: number, table: Float32Array, offset: number, small: Int32Array, large: Int32Array, scaled: Float64Array): void {
   let smallCount = 0;
   let largeCount = 0;
-  let cdf = 0;
   for (let i = 0; i < n; i++) {
     scaled[i] = probability[i] * n;
     if (scaled[i] < 1) small[smallCount++] = i;
     else large[largeCount++] = i;
-    cdf += probability[i];
-    const t = offset + i * 4;
-    table[t + 2] = probability[i];
-    table[t + 3] = i === n - 1 ? 1 : cdf;
+    table[offset + i * 4 + 2] = probability[i];
   }
   while (smallCount > 0 && largeCount > 0) {
     const less = small[--smallCount];
@@ -103,6 +105,7 @@ function writeAliasTable(probability: Float64Array, n: number, table: Float32Arr
     table[offset + i * 4] = 1;
     table[offset + i * 4 + 1] = i;
   }
+  for (let i = 0; i < n; i++) table[offset + i * 4 + 3] = probability[table[offset + i * 4 + 1]];
 }
 
 export function buildEnvironmentDistribution(image: EnvironmentImage): EnvironmentDistribution {
