@@ -91,6 +91,10 @@ def main():
     # Lossy (DCT) compressions: half channels only.
     write_exr(f'{OUT}-half-dwaa.exr', pixels, np.float16, OpenEXR.DWAA_COMPRESSION)
     write_exr(f'{OUT}-half-dwab.exr', pixels, np.float16, OpenEXR.DWAB_COMPRESSION)
+    # What OpenEXR itself decodes from the lossy files (float32 RGB, rows from the top).
+    for name in ['dwaa', 'dwab']:
+        decoded = OpenEXR.File(f'{OUT}-half-{name}.exr').channels()['RGB'].pixels
+        decoded.astype('<f4').tofile(f'{OUT}-half-{name}.openexr.f32')
     for f in sorted(os.listdir(os.path.dirname(OUT))):
         if f.startswith('gradient'):
             print(f, os.path.getsize(os.path.join(os.path.dirname(OUT), f)))
