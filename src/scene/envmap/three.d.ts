@@ -1,5 +1,5 @@
-// The two pieces of three.js the OpenEXR decoder uses, typed narrowly here
-// rather than pulling in @types/three for them.
+// The pieces of three.js the OpenEXR decoder (and bench/envmap-load.ts's
+// writer) use, typed narrowly here rather than pulling in @types/three.
 declare module 'three/examples/jsm/loaders/EXRLoader.js' {
   export class EXRLoader {
     setDataType(type: number): this;
@@ -8,4 +8,5 @@ declare module 'three/examples/jsm/loaders/EXRLoader.js' {
 }
 declare module 'three' {
   export const FloatType: number;
+  export const DataUtils: { toHalfFloat(value: number): number };
 }
