@@ -8,12 +8,12 @@ import type { DisplayOptions } from '../render/passes/display';
 import type { SamplerKind } from '../render/layout';
 import type { Scene } from '../scene/types';
 import { runKernel, type KernelRequest } from './kernels';
+// Registers window.pathtraceEnvironmentKernels (environment-map test kernels).
+import './environmentKernels';
 import { createContext } from '../render/gl/context';
 import { Program, ShaderCompileError } from '../render/gl/program';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/passes/trace';
 import { layoutDefines } from '../render/layout';
-// Registers window.pathtraceEnvironmentKernels (environment-map test kernels).
-import './environmentKernels';
 
 export interface LoadOptions {
   width: number;
