@@ -68,44 +68,58 @@ function bandWeight(j: number, rows: number): number {
   return Math.cos((Math.PI * j) / rows) - Math.cos((Math.PI * (j + 1)) / rows);
 }
 
+/** Work arrays of writeAliasTable, reused across rows. */
+interface AliasScratch {
+  stacks: Int32Array;
+  scaled: Float64Array;
+  keep: Float64Array;
+  alias: Int32Array;
+}
+
+function aliasScratch(n: number): AliasScratch {
+  return { stacks: new Int32Array(n), scaled: new Float64Array(n), keep: new Float64Array(n), alias: new Int32Array(n) };
+}
+
 /**
- * Vose's alias method for `n` probabilities in `probability` (summing to 1),
+ * Vose's alias method for the `n` non-negative `weights` (sum `sum` > 0),
  * written into `table` at `offset` with 4 floats per entry: x = keep
  * probability (the entry itself when the remapped sample is below it, else
  * its alias), y = alias index, z = probability, w = probability of the alias.
+ * The small and large worklists share one array (small from the front,
+ * large from the back); the table is written in one sequential pass.
  */
-function writeAliasTable(probability: Float64Array, n: number, table: Float32Array, offset: number, small: Int32Array, large: Int32Array, scaled: Float64Array): void {
-  let smallCount = 0;
-  let largeCount = 0;
+function writeAliasTable(weights: Float64Array, sum: number, n: number, table: Float32Array, offset: number, work: AliasScratch): void {
+  const { stacks, scaled, keep, alias } = work;
+  const scale = n / sum;
+  let small = 0;
+  let large = n;
   for (let i = 0; i < n; i++) {
-    scaled[i] = probability[i] * n;
-    if (scaled[i] < 1) small[smallCount++] = i;
-    else large[largeCount++] = i;
-    table[offset + i * 4 + 2] = probability[i];
+    const x = weights[i] * scale;
+    scaled[i] = x;
+    keep[i] = 1; // what is left at the end is 1 up to rounding: keeps itself
+    alias[i] = i;
+    if (x < 1) stacks[small++] = i;
+    else stacks[--large] = i;
   }
-  while (smallCount > 0 && largeCount > 0) {
-    const less = small[--smallCount];
-    const more = large[largeCount - 1];
-    table[offset + less * 4] = scaled[less];
-    table[offset + less * 4 + 1] = more;
-    scaled[more] = scaled[more] + scaled[less] - 1;
-    if (scaled[more] < 1) {
-      largeCount--;
-      small[smallCount++] = more;
+  while (small > 0 && large < n) {
+    const less = stacks[--small];
+    const more = stacks[large];
+    keep[less] = scaled[less];
+    alias[less] = more;
+    const left = scaled[more] + scaled[less] - 1;
+    scaled[more] = left;
+    if (left < 1) {
+      large++;
+      stacks[small++] = more;
     }
   }
-  // What is left is 1 up to rounding: keeps itself.
-  while (largeCount > 0) {
-    const i = large[--largeCount];
-    table[offset + i * 4] = 1;
-    table[offset + i * 4 + 1] = i;
+  const inverse = 1 / sum;
+  for (let i = 0, t = offset; i < n; i++, t += 4) {
+    table[t] = keep[i];
+    table[t + 1] = alias[i];
+    table[t + 2] = weights[i] * inverse;
+    table[t + 3] = weights[alias[i]] * inverse;
   }
-  while (smallCount > 0) {
-    const i = small[--smallCount];
-    table[offset + i * 4] = 1;
-    table[offset + i * 4 + 1] = i;
-  }
-  for (let i = 0; i < n; i++) table[offset + i * 4 + 3] = probability[table[offset + i * 4 + 1]];
 }
 
 export function buildEnvironmentDistribution(image: EnvironmentImage): EnvironmentDistribution {
@@ -113,8 +127,7 @@ export function buildEnvironmentDistribution(image: EnvironmentImage): Environme
   const rows = Math.max(height - 1, 1);
   const conditional = new Float32Array(width * rows * 4);
   const marginal = new Float32Array(rows * 4);
-  const longest = Math.max(width, rows);
-  const scratch = { small: new Int32Array(longest), large: new Int32Array(longest), scaled: new Float64Array(longest) };
+  const scratch = aliasScratch(Math.max(width, rows));
   const cell = new Float64Array(width);
   const rowWeight = new Float64Array(rows);
   let top = new Float64Array(width);
@@ -126,9 +139,8 @@ export function buildEnvironmentDistribution(image: EnvironmentImage): Environme
     rowLuminance(image, Math.min(j + 1, height - 1), bottom);
     const sum = cellMeans(top, bottom, width, cell);
     // A black row is sampled uniformly (it gets no marginal mass unless the whole map is black).
-    if (sum > 0) for (let i = 0; i < width; i++) cell[i] /= sum;
-    else cell.fill(1 / width);
-    writeAliasTable(cell, width, conditional, j * width * 4, scratch.small, scratch.large, scratch.scaled);
+    if (sum > 0) writeAliasTable(cell, sum, width, conditional, j * width * 4, scratch);
+    else writeAliasTable(cell.fill(1), width, width, conditional, j * width * 4, scratch);
     // Mean luminance of the row times its solid angle / (2 pi).
     rowWeight[j] = (sum / width) * bandWeight(j, rows);
     integral += rowWeight[j] * 2 * Math.PI;
@@ -139,8 +151,7 @@ export function buildEnvironmentDistribution(image: EnvironmentImage): Environme
     for (let j = 0; j < rows; j++) rowWeight[j] = bandWeight(j, rows);
     total = 2;
   }
-  for (let j = 0; j < rows; j++) rowWeight[j] /= total;
-  writeAliasTable(rowWeight, rows, marginal, 0, scratch.small, scratch.large, scratch.scaled);
+  writeAliasTable(rowWeight, total, rows, marginal, 0, scratch);
   return { width, rows, marginal, conditional, integral };
 }
 
