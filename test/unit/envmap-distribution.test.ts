@@ -198,3 +198,42 @@ describe('the reference sampler draws from its pdf', () => {
     }
   });
 });
+
+describe('compensated distribution (pbrt-v4: max(L - average, 0))', () => {
+  const d = buildEnvironmentDistribution(smooth, { compensated: true });
+
+  it('tables are consistent and the sampler draws from its pdf', () => {
+    checkTable(d.marginal, 0, d.rows);
+    for (let j = 0; j < d.rows; j++) checkTable(d.conditional, j * d.width * 4, d.width);
+    const result = chiSquareUv(d, 99);
+    expect(result.pValue, JSON.stringify(result)).toBeGreaterThan(ALPHA);
+  });
+
+  it('puts no density where the map is below its average, some where it is above; the integral is the map\'s', () => {
+    // Smoother than `smooth`: under 5 % change from one texel to the next.
+    const gentle = makeImage(64, 33, (x, y) => 1 + 2 * Math.sin((Math.PI * x) / 64) ** 2 + y / 32);
+    const d = buildEnvironmentDistribution(gentle, { compensated: true });
+    const plain = buildEnvironmentDistribution(gentle);
+    expect(d.integral).toBe(plain.integral);
+    const average = plain.integral / (4 * Math.PI); // the map's mean luminance over the sphere
+    let zero = 0;
+    let positive = 0;
+    for (let k = 0; k < 4000; k++) {
+      const u = (k % 80) / 80 + 0.004;
+      const v = Math.floor(k / 80) / 50 + 0.005;
+      const [r, g, b] = lookupEnvironment(gentle, u, v);
+      const luminance = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+      const pdf = environmentDistributionPdfUv(d, u, v);
+      // Cells are at most one texel across and the map is smooth: 10 % margins.
+      if (luminance < average * 0.9) { expect(pdf).toBe(0); zero++; }
+      if (luminance > average * 1.1) { expect(pdf).toBeGreaterThan(0); positive++; }
+    }
+    expect(zero).toBeGreaterThan(500);
+    expect(positive).toBeGreaterThan(500);
+  });
+
+  it('a constant map falls back to the plain distribution', () => {
+    const constant = makeImage(16, 9, () => 3);
+    expect(buildEnvironmentDistribution(constant, { compensated: true })).toEqual(buildEnvironmentDistribution(constant));
+  });
+});

@@ -122,7 +122,18 @@ function writeAliasTable(weights: Float64Array, sum: number, n: number, table: F
   }
 }
 
-export function buildEnvironmentDistribution(image: EnvironmentImage): EnvironmentDistribution {
+export interface DistributionOptions {
+  /**
+   * pbrt-v4's compensated distribution: sample max(L - average L, 0), which
+   * spends no light samples where BSDF sampling already does well (dim,
+   * smooth parts of the map). The pdf is then zero there: only valid with
+   * MIS against BSDF sampling that can reach every direction. A map with
+   * nothing above its average (constant) falls back to the plain one.
+   */
+  compensated?: boolean;
+}
+
+export function buildEnvironmentDistribution(image: EnvironmentImage, options: DistributionOptions = {}): EnvironmentDistribution {
   const { width, height } = image;
   const rows = Math.max(height - 1, 1);
   const conditional = new Float32Array(width * rows * 4);
@@ -130,6 +141,7 @@ export function buildEnvironmentDistribution(image: EnvironmentImage): Environme
   const scratch = aliasScratch(Math.max(width, rows));
   const cell = new Float64Array(width);
   const rowWeight = new Float64Array(rows);
+  const average = options.compensated ? averageLuminance(image) : 0;
   let top = new Float64Array(width);
   let bottom = new Float64Array(width);
   rowLuminance(image, 0, bottom);
@@ -137,15 +149,17 @@ export function buildEnvironmentDistribution(image: EnvironmentImage): Environme
   for (let j = 0; j < rows; j++) {
     [top, bottom] = [bottom, top];
     rowLuminance(image, Math.min(j + 1, height - 1), bottom);
-    const sum = cellMeans(top, bottom, width, cell);
+    let sum = cellMeans(top, bottom, width, cell);
+    integral += (sum / width) * bandWeight(j, rows) * 2 * Math.PI;
+    if (average > 0) sum = subtractClamped(cell, average);
     // A black row is sampled uniformly (it gets no marginal mass unless the whole map is black).
     if (sum > 0) writeAliasTable(cell, sum, width, conditional, j * width * 4, scratch);
     else writeAliasTable(cell.fill(1), width, width, conditional, j * width * 4, scratch);
-    // Mean luminance of the row times its solid angle / (2 pi).
+    // Mean sampled weight of the row times its solid angle / (2 pi).
     rowWeight[j] = (sum / width) * bandWeight(j, rows);
-    integral += rowWeight[j] * 2 * Math.PI;
   }
   let total = rowWeight.reduce((a, b) => a + b, 0);
+  if (!(total > 0) && average > 0) return buildEnvironmentDistribution(image);
   // A black map: uniform over the sphere (the caller gives it no light-selection probability anyway).
   if (!(total > 0)) {
     for (let j = 0; j < rows; j++) rowWeight[j] = bandWeight(j, rows);
@@ -153,6 +167,32 @@ export function buildEnvironmentDistribution(image: EnvironmentImage): Environme
   }
   writeAliasTable(rowWeight, total, rows, marginal, 0, scratch);
   return { width, rows, marginal, conditional, integral };
+}
+
+/** Mean luminance over the sphere, from the texel rows weighted by sin(theta) (a heuristic's constant: need not be exact). */
+function averageLuminance(image: EnvironmentImage): number {
+  const row = new Float64Array(image.width);
+  let sum = 0;
+  let weights = 0;
+  for (let y = 0; y < image.height; y++) {
+    const w = image.height > 1 ? Math.sin((Math.PI * y) / (image.height - 1)) : 1;
+    if (w <= 0) continue;
+    rowLuminance(image, y, row);
+    sum += (w * row.reduce((a, b) => a + b, 0)) / image.width;
+    weights += w;
+  }
+  return weights > 0 ? sum / weights : 0;
+}
+
+/** cell[i] = max(cell[i] - offset, 0); returns the new sum. */
+function subtractClamped(cell: Float64Array, offset: number): number {
+  let sum = 0;
+  for (let i = 0; i < cell.length; i++) {
+    const v = cell[i] > offset ? cell[i] - offset : 0;
+    cell[i] = v;
+    sum += v;
+  }
+  return sum;
 }
 
 /** Alias-table draw of one entry from u in [0, 1): the entry and u remapped to [0, 1) within it. */

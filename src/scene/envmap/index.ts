@@ -5,5 +5,5 @@ export {
   environmentDistributionPdf,
   environmentDistributionPdfUv,
 } from './distribution';
-export type { EnvironmentDistribution, EnvironmentUvSample } from './distribution';
+export type { EnvironmentDistribution, EnvironmentUvSample, DistributionOptions } from './distribution';
 export { directionToUv, uvToDirection, lookupEnvironment } from './mapping';
