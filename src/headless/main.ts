@@ -12,6 +12,7 @@ import { createContext } from '../render/gl/context';
 import { Program, ShaderCompileError } from '../render/gl/program';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/passes/trace';
 import { layoutDefines } from '../render/layout';
+import './bvhKernels'; // window.pathtraceBvh: the BVH traversal kernel for test/browser/bvh-*.test.ts
 
 export interface LoadOptions {
   width: number;

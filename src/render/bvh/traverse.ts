@@ -18,8 +18,8 @@ export interface BvhHit {
   b2: number;
 }
 
-/** Pads the slab test's exit distance (pbrt's 1 + 2 gamma(3) for float32), so a box never loses a hit on its face. */
-export const BOX_EXIT_SCALE = 1.0000004;
+/** Pads the slab test's exit distance (pbrt's 1 + 2 gamma(3), plus ulps for approximate GPU division), so a box never loses a hit on its face. */
+export const BOX_EXIT_SCALE = 1.000001;
 
 /** Per-ray constants of the watertight test: the axis permutation and shear. */
 interface ShearedRay {
@@ -43,20 +43,26 @@ export function shearRay(origin: Vec3, dir: Vec3): ShearedRay {
 /** Watertight test of triangle j; a hit closer than tMax, or null. */
 export function intersectTriangle(tex: Float32Array, j: number, ray: ShearedRay, tMax: number): BvhHit | null {
   const o = j * BVH_TRIANGLE_TEXELS * 4;
-  const v = [0, 1, 2].map((c) => {
-    const p = [0, 1, 2].map((k) => tex[o + c * 4 + k] - ray.origin[k]);
-    return [p[ray.kx] - ray.sx * p[ray.kz], p[ray.ky] - ray.sy * p[ray.kz], ray.sz * p[ray.kz]];
-  });
-  const [a, b, c] = v;
-  const u = c[0] * b[1] - c[1] * b[0];
-  const vv = a[0] * c[1] - a[1] * c[0];
-  const w = b[0] * a[1] - b[1] * a[0];
-  if ((u < 0 || vv < 0 || w < 0) && (u > 0 || vv > 0 || w > 0)) return null;
-  const det = u + vv + w;
+  const { origin, kx, ky, kz, sx, sy, sz } = ray;
+  // Vertex c relative to the origin, permuted and sheared: x, y across the ray, z = t along it.
+  const sheared = (c: number, axis: 0 | 1 | 2): number => {
+    const pz = tex[o + c * 4 + kz] - origin[kz];
+    if (axis === 2) return sz * pz;
+    const k = axis === 0 ? kx : ky;
+    return tex[o + c * 4 + k] - origin[k] - (axis === 0 ? sx : sy) * pz;
+  };
+  const ax = sheared(0, 0), ay = sheared(0, 1);
+  const bx = sheared(1, 0), by = sheared(1, 1);
+  const cx = sheared(2, 0), cy = sheared(2, 1);
+  const u = cx * by - cy * bx;
+  const v = ax * cy - ay * cx;
+  const w = bx * ay - by * ax;
+  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return null;
+  const det = u + v + w;
   if (det === 0) return null;
-  const t = (u * a[2] + vv * b[2] + w * c[2]) / det;
+  const t = (u * sheared(0, 2) + v * sheared(1, 2) + w * sheared(2, 2)) / det;
   if (!(t > 0 && t < tMax)) return null;
-  return { triangle: j, t, b1: vv / det, b2: w / det };
+  return { triangle: j, t, b1: v / det, b2: w / det };
 }
 
 /** Entry distance of the ray into node's box, or Infinity when it misses before tMax. */
