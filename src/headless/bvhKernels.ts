@@ -11,6 +11,8 @@ import { FloatTarget } from '../render/gl/targets';
 import { createContext } from '../render/gl/context';
 import { BvhTextures, bvhDefines, uploadFloatTexture } from '../render/bvhTextures';
 import { BVH_TEXTURE_WIDTH, type PackedBvh } from '../render/bvh/pack';
+import { buildBvhAsync } from '../render/bvh/buildAsync';
+import { decodeMesh } from '../scene/mesh';
 
 export interface BvhTraceRequest {
   /** base64 of the packed texture data, with their sizes. */
@@ -28,10 +30,7 @@ export interface BvhTraceRequest {
 const MODES = { closest: 0, any: 1, surface: 2 } as const;
 
 function fromBase64(text: string): Float32Array {
-  const binary = atob(text);
-  const bytes = new Uint8Array(binary.length);
-  for (let i = 0; i < binary.length; i++) bytes[i] = binary.charCodeAt(i);
-  return new Float32Array(bytes.buffer);
+  return new Float32Array(fromBase64Bytes(text).buffer);
 }
 
 function toBase64(data: Float32Array): string {
@@ -93,10 +92,36 @@ export function traceBvh(request: BvhTraceRequest): string {
   }
 }
 
-declare global {
-  interface Window {
-    pathtraceBvh: { trace: typeof traceBvh };
+/** Builds a BVH in the page's worker over one mesh (base64 Float32 positions, Uint32 indices); returns the packed nodes and triangles (base64). */
+export async function buildInWorker(positions: string, indices: string, material: number): Promise<{ nodes: string; triangles: string; depth: number }> {
+  const index = fromBase64(indices);
+  const mesh = { positions: fromBase64(positions), normals: null, indices: new Uint32Array(index.buffer), material };
+  const packed = await buildBvhAsync([mesh]);
+  return { nodes: toBase64(packed.nodes.data), triangles: toBase64(packed.triangles.data), depth: packed.depth };
+}
+
+/** Decodes a mesh file in the page (base64 bytes); returns its arrays as base64, or the AssetError's message. */
+export async function decodeInPage(fileName: string, bytes: string): Promise<{ positions: string; normals: string | null; indices: string } | { error: string }> {
+  const raw = fromBase64Bytes(bytes);
+  try {
+    const mesh = await decodeMesh(raw, fileName);
+    return { positions: toBase64(mesh.positions), normals: mesh.normals ? toBase64(mesh.normals) : null, indices: toBase64(new Float32Array(mesh.indices.buffer)) };
+  } catch (error) {
+    return { error: `${(error as Error).name}: ${(error as Error).message}` };
   }
 }
 
-window.pathtraceBvh = { trace: traceBvh };
+function fromBase64Bytes(text: string): Uint8Array {
+  const binary = atob(text);
+  const bytes = new Uint8Array(binary.length);
+  for (let i = 0; i < binary.length; i++) bytes[i] = binary.charCodeAt(i);
+  return bytes;
+}
+
+declare global {
+  interface Window {
+    pathtraceBvh: { trace: typeof traceBvh; buildInWorker: typeof buildInWorker; decodeInPage: typeof decodeInPage };
+  }
+}
+
+window.pathtraceBvh = { trace: traceBvh, buildInWorker, decodeInPage };

@@ -10,6 +10,7 @@ import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { buildBvh, type BvhMeshInput } from '../../src/render/bvh/build';
 import { packBvh, type PackedBvh } from '../../src/render/bvh/pack';
+import { buildAndPack } from '../../src/render/bvh/worker';
 import { bruteForce, type Vec3 } from '../../src/render/bvh/traverse';
 import { transformMesh } from '../../src/scene/mesh/transform';
 import { decodeMesh } from '../../src/scene/mesh';
@@ -139,6 +140,16 @@ describe('GLSL BVH traversal', () => {
       checked++;
     }
     expect(checked).toBeGreaterThan(1500);
+  });
+
+  it('the page builds the same BVH in its Web Worker as Node does', async () => {
+    const mesh = transformMesh(icosphere(4, false), { rotation: [10, 20, 30] });
+    const b64 = (a: Float32Array | Uint32Array) => Buffer.from(a.buffer, a.byteOffset, a.byteLength).toString('base64');
+    const built = await session().page.evaluate(([p, i]) => window.pathtraceBvh.buildInWorker(p, i, 2), [b64(mesh.positions), b64(mesh.indices)] as const);
+    const expected = buildAndPack([{ ...mesh, material: 2 }]);
+    expect(built.depth).toBe(expected.depth);
+    expect(built.nodes).toBe(b64(expected.nodes.data));
+    expect(built.triangles).toBe(b64(expected.triangles.data));
   });
 
   it('watertight: rays crossing an icosphere exactly at shared edges and vertices always hit', async () => {

@@ -76,7 +76,9 @@ function emptyBox(b: Float64Array, o: number): void {
   b.fill(-Infinity, o + 3, o + 6);
 }
 
-function growBox(b: Float64Array, o: number, src: ArrayLike<number>, s: number): void {
+const EMPTY_BUCKETS = new Float64Array(BUCKETS * 6).map((_, i) => (i % 6 < 3 ? Infinity : -Infinity));
+
+function growBox(b: Float64Array, o: number, src: Float64Array, s: number): void {
   for (let k = 0; k < 3; k++) {
     if (src[s + k] < b[o + k]) b[o + k] = src[s + k];
     if (src[s + 3 + k] > b[o + 3 + k]) b[o + 3 + k] = src[s + 3 + k];
@@ -90,7 +92,7 @@ export function buildBvh(meshes: BvhMeshInput[]): Bvh {
   const order = new Uint32Array(n).map((_, i) => i);
   const nodeBounds = new Float32Array(Math.max(1, 2 * n - 1) * 6);
   const nodeData = new Uint32Array(Math.max(1, 2 * n - 1) * 2);
-  const scratch = new Float64Array(6); // node bounds while building
+  const scratch = new Float64Array(6); // the SAH sweeps' running box
   const buckets = new Float64Array(BUCKETS * 6);
   const counts = new Uint32Array(BUCKETS);
   const below = new Float64Array(BUCKETS); // SAH cost terms of splits after bucket i
@@ -99,38 +101,53 @@ export function buildBvh(meshes: BvhMeshInput[]): Bvh {
 
   const build = (start: number, end: number, depth: number): void => {
     const node = nodeCount++;
-    maxDepth = Math.max(maxDepth, depth);
-    emptyBox(scratch, 0);
-    const cmin = [Infinity, Infinity, Infinity];
-    const cmax = [-Infinity, -Infinity, -Infinity];
+    if (depth > maxDepth) maxDepth = depth;
+    let minX = Infinity, minY = Infinity, minZ = Infinity, maxX = -Infinity, maxY = -Infinity, maxZ = -Infinity;
+    let cminX = Infinity, cminY = Infinity, cminZ = Infinity, cmaxX = -Infinity, cmaxY = -Infinity, cmaxZ = -Infinity;
     for (let i = start; i < end; i++) {
       const t = order[i];
-      growBox(scratch, 0, boxes, t * 6);
-      for (let k = 0; k < 3; k++) {
-        const c = centroids[t * 3 + k];
-        if (c < cmin[k]) cmin[k] = c;
-        if (c > cmax[k]) cmax[k] = c;
-      }
+      const b = t * 6;
+      if (boxes[b] < minX) minX = boxes[b];
+      if (boxes[b + 1] < minY) minY = boxes[b + 1];
+      if (boxes[b + 2] < minZ) minZ = boxes[b + 2];
+      if (boxes[b + 3] > maxX) maxX = boxes[b + 3];
+      if (boxes[b + 4] > maxY) maxY = boxes[b + 4];
+      if (boxes[b + 5] > maxZ) maxZ = boxes[b + 5];
+      const x = centroids[t * 3], y = centroids[t * 3 + 1], z = centroids[t * 3 + 2];
+      if (x < cminX) cminX = x;
+      if (x > cmaxX) cmaxX = x;
+      if (y < cminY) cminY = y;
+      if (y > cmaxY) cmaxY = y;
+      if (z < cminZ) cminZ = z;
+      if (z > cmaxZ) cmaxZ = z;
     }
-    for (let k = 0; k < 6; k++) nodeBounds[node * 6 + k] = scratch[k];
+    const o = node * 6;
+    nodeBounds[o] = minX;
+    nodeBounds[o + 1] = minY;
+    nodeBounds[o + 2] = minZ;
+    nodeBounds[o + 3] = maxX;
+    nodeBounds[o + 4] = maxY;
+    nodeBounds[o + 5] = maxZ;
     const count = end - start;
-    const makeLeaf = () => {
+    const extents = [cmaxX - cminX, cmaxY - cminY, cmaxZ - cminZ];
+    const axis = extents[0] >= extents[1] ? (extents[0] >= extents[2] ? 0 : 2) : extents[1] >= extents[2] ? 1 : 2;
+    const lo = [cminX, cminY, cminZ][axis];
+    const extent = extents[axis];
+    let mid = -1;
+    if (count === 1) {
+      // a leaf
+    } else if (extent > 0 && depth + levelsNeeded(count) < MAX_BVH_DEPTH) {
+      const area = 2 * ((maxX - minX) * (maxY - minY) + (maxY - minY) * (maxZ - minZ) + (maxZ - minZ) * (maxX - minX));
+      const split = sahSplit(start, end, axis, lo, extent, area);
+      if (split === 'leaf' && count > MAX_LEAF_TRIANGLES) mid = medianSplit(start, end, axis);
+      else if (split !== 'leaf') mid = split >= 0 ? partitionAt(start, end, axis, lo, extent, split) : medianSplit(start, end, axis);
+    } else if (count > MAX_LEAF_TRIANGLES) {
+      mid = medianSplit(start, end, axis);
+    }
+    if (mid < 0) {
       nodeData[node * 2] = start;
       nodeData[node * 2 + 1] = count;
-    };
-    if (count === 1) return makeLeaf();
-    const axis = [0, 1, 2].reduce((a, k) => (cmax[k] - cmin[k] > cmax[a] - cmin[a] ? k : a), 0);
-    const extent = cmax[axis] - cmin[axis];
-    let mid = -1;
-    if (extent > 0 && depth + levelsNeeded(count) < MAX_BVH_DEPTH) {
-      const split = sahSplit(start, end, axis, cmin[axis], extent, surfaceArea(scratch, 0));
-      if (split === 'leaf') {
-        if (count <= MAX_LEAF_TRIANGLES) return makeLeaf();
-      } else if (split >= 0) {
-        mid = partition(start, end, (t) => bucketOf(centroids[t * 3 + axis], cmin[axis], extent) <= split);
-      }
-    } else if (count <= MAX_LEAF_TRIANGLES) {
-      return makeLeaf();
+      return;
     }
     if (mid <= start || mid >= end) mid = medianSplit(start, end, axis);
     build(start, mid, depth + 1);
@@ -142,12 +159,17 @@ export function buildBvh(meshes: BvhMeshInput[]): Bvh {
   /** The best bucket boundary (split after bucket i), 'leaf' when a leaf is cheaper, -1 when no split separates. */
   const sahSplit = (start: number, end: number, axis: number, lo: number, extent: number, area: number): number | 'leaf' => {
     counts.fill(0);
-    for (let b = 0; b < BUCKETS; b++) emptyBox(buckets, b * 6);
+    buckets.set(EMPTY_BUCKETS);
+    const scale = BUCKETS / extent;
     for (let i = start; i < end; i++) {
-      const t = order[i];
-      const b = bucketOf(centroids[t * 3 + axis], lo, extent);
-      counts[b]++;
-      growBox(buckets, b * 6, boxes, t * 6);
+      const t = order[i] * 6;
+      const b = Math.min(BUCKETS - 1, Math.floor((centroids[order[i] * 3 + axis] - lo) * scale)) * 6;
+      counts[b / 6]++;
+      // Grow bucket b by triangle t's box (inlined: this is the build's hot loop).
+      for (let k = 0; k < 3; k++) {
+        if (boxes[t + k] < buckets[b + k]) buckets[b + k] = boxes[t + k];
+        if (boxes[t + 3 + k] > buckets[b + 3 + k]) buckets[b + 3 + k] = boxes[t + 3 + k];
+      }
     }
     // Sweep from the right: cost of everything above each boundary.
     emptyBox(scratch, 0);
@@ -172,11 +194,13 @@ export function buildBvh(meshes: BvhMeshInput[]): Bvh {
     return TRAVERSAL_COST + bestCost / area >= end - start ? 'leaf' : best;
   };
 
-  const partition = (start: number, end: number, left: (t: number) => boolean): number => {
+  /** Moves triangles in buckets <= split before the others; returns the boundary. */
+  const partitionAt = (start: number, end: number, axis: number, lo: number, extent: number, split: number): number => {
+    const scale = BUCKETS / extent;
     let i = start;
     let j = end - 1;
     while (i <= j) {
-      if (left(order[i])) {
+      if (Math.min(BUCKETS - 1, Math.floor((centroids[order[i] * 3 + axis] - lo) * scale)) <= split) {
         i++;
       } else {
         const swap = order[i];
@@ -201,8 +225,4 @@ export function buildBvh(meshes: BvhMeshInput[]): Bvh {
     triangleOrder: order,
     depth: maxDepth,
   };
-}
-
-function bucketOf(c: number, lo: number, extent: number): number {
-  return Math.min(BUCKETS - 1, Math.floor((BUCKETS * (c - lo)) / extent));
 }

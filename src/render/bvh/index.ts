@@ -2,3 +2,4 @@
 export { buildBvh, MAX_BVH_DEPTH, MAX_LEAF_TRIANGLES, type Bvh, type BvhMeshInput } from './build';
 export { packBvh, BVH_TEXTURE_WIDTH, MAX_TRIANGLES, type PackedBvh, type TextureData } from './pack';
 export { traverseBvh, bruteForce, type BvhHit } from './traverse';
+export { buildBvhAsync, stopBvhWorker } from './buildAsync';

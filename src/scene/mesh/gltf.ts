@@ -30,14 +30,26 @@ let dracoDecoder: Promise<unknown> | null = null;
 
 /** The Draco decoder (WebAssembly), loaded once and only for files that need it. */
 function loadDracoDecoder(): Promise<unknown> {
-  dracoDecoder ??= import('draco3dgltf').then((m) => (m.default ?? m).createDecoderModule({}));
+  dracoDecoder ??= (async () => {
+    const draco = await import('draco3dgltf');
+    const inNode = typeof process !== 'undefined' && !!process.versions?.node;
+    // In a browser the .wasm is a bundled asset handed over as bytes (no MIME or path guessing).
+    const options = inNode ? {} : { wasmBinary: await (await import('./dracoWasm')).dracoWasmBinary() };
+    return (draco.default ?? draco).createDecoderModule(options);
+  })();
+  dracoDecoder.catch(() => (dracoDecoder = null)); // a failed load may be retried
   return dracoDecoder;
 }
 
 async function createIO(json: GltfJson): Promise<WebIO> {
   const io = new WebIO().registerExtensions(KHRONOS_EXTENSIONS);
-  if (json.extensionsUsed?.includes(DRACO)) io.registerDependencies({ 'draco3d.decoder': await loadDracoDecoder() });
-  return io;
+  if (!json.extensionsUsed?.includes(DRACO)) return io;
+  try {
+    return io.registerDependencies({ 'draco3d.decoder': await loadDracoDecoder() });
+  } catch (error) {
+    // In a page whose Content-Security-Policy lacks 'wasm-unsafe-eval', WebAssembly cannot compile.
+    throw new AssetError(`the file is Draco-compressed and the Draco decoder (WebAssembly) cannot run here: ${(error as Error).message}`);
+  }
 }
 
 export async function decodeGltf(bytes: Uint8Array, binary: boolean, resolveResource?: ResourceResolver): Promise<TriangleMesh> {
