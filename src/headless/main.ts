@@ -14,6 +14,7 @@ import { createContext } from '../render/gl/context';
 import { Program, ShaderCompileError } from '../render/gl/program';
 import { sceneDefines } from '../render/shaderChunks';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/shaderSources';
+import './bvhKernels'; // window.pathtraceBvh: the BVH traversal kernel for test/browser/bvh-*.test.ts
 
 export interface LoadOptions {
   width: number;

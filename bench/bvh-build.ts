@@ -1,0 +1,74 @@
+/**
+ * BVH build time and memory in Node, for the issue's report: the bunny
+ * (test/fixtures/meshes/bunny.ply and the npm package `bunny`, 3674
+ * triangles each) and a generated mesh of about 1M triangles (a bumpy
+ * sphere, smooth). Run: node --expose-gc --import tsx bench/bvh-build.ts [--triangles N]
+ */
+import { readFileSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { buildBvh, type BvhMeshInput } from '../src/render/bvh/build';
+import { packBvh } from '../src/render/bvh/pack';
+import { decodeMesh } from '../src/scene/mesh';
+
+const gc = (globalThis as { gc?: () => void }).gc ?? (() => {});
+const mb = (bytes: number) => `${(bytes / 2 ** 20).toFixed(1)} MB`;
+
+/** A latitude-longitude sphere with bumps: rows * cols * 2 triangles of uneven sizes (poles are dense). */
+function bumpySphere(triangles: number): BvhMeshInput {
+  const rows = Math.round(Math.sqrt(triangles / 4));
+  const cols = Math.round(triangles / (2 * rows));
+  const positions = new Float32Array((rows + 1) * (cols + 1) * 3);
+  for (let i = 0; i <= rows; i++) {
+    for (let j = 0; j <= cols; j++) {
+      const theta = (Math.PI * i) / rows;
+      const phi = (2 * Math.PI * j) / cols;
+      const r = 1 + 0.05 * Math.sin(13 * theta) * Math.cos(17 * phi);
+      positions.set([r * Math.sin(theta) * Math.cos(phi), r * Math.cos(theta), r * Math.sin(theta) * Math.sin(phi)], (i * (cols + 1) + j) * 3);
+    }
+  }
+  const indices = new Uint32Array(rows * cols * 6);
+  let o = 0;
+  for (let i = 0; i < rows; i++) {
+    for (let j = 0; j < cols; j++) {
+      const a = i * (cols + 1) + j;
+      indices.set([a, a + cols + 1, a + 1, a + 1, a + cols + 1, a + cols + 2], o);
+      o += 6;
+    }
+  }
+  return { positions, normals: positions.slice(), indices, material: 0 };
+}
+
+function measure(name: string, meshes: BvhMeshInput[]): void {
+  gc();
+  const before = process.memoryUsage();
+  const t0 = performance.now();
+  const bvh = buildBvh(meshes);
+  const t1 = performance.now();
+  const packed = packBvh(bvh, meshes);
+  const t2 = performance.now();
+  const after = process.memoryUsage();
+  const triangles = packed.triangleCount;
+  const textureBytes = packed.nodes.data.byteLength + packed.triangles.data.byteLength;
+  console.log(
+    `${name}: ${triangles} triangles, ${packed.nodeCount} nodes, depth ${packed.depth}; ` +
+      `build ${(t1 - t0).toFixed(0)} ms, pack ${(t2 - t1).toFixed(0)} ms; ` +
+      `textures ${mb(textureBytes)} (nodes ${packed.nodes.width}x${packed.nodes.height}, triangles ${packed.triangles.width}x${packed.triangles.height}); ` +
+      `heap+arrays grew ${mb(after.heapUsed + after.arrayBuffers - before.heapUsed - before.arrayBuffers)}, rss ${mb(after.rss)}`,
+  );
+}
+
+async function main(): Promise<void> {
+  const arg = process.argv.indexOf('--triangles');
+  const big = arg > 0 ? Number(process.argv[arg + 1]) : 1_000_000;
+  const fixture = await decodeMesh(new Uint8Array(readFileSync(new URL('../test/fixtures/meshes/bunny.ply', import.meta.url))), 'bunny.ply');
+  const npmBunny = createRequire(import.meta.url)('bunny') as { positions: number[][]; cells: number[][] };
+  const fromNpm = { positions: Float32Array.from(npmBunny.positions.flat()), normals: null, indices: Uint32Array.from(npmBunny.cells.flat()), material: 0 };
+  for (let round = 0; round < 2; round++) {
+    // The first round includes JIT warm-up; the second is the steady figure.
+    measure(`bunny.ply (round ${round + 1})`, [{ ...fixture, material: 0 }]);
+    measure(`npm bunny (round ${round + 1})`, [fromNpm]);
+  }
+  measure(`bumpy sphere`, [bumpySphere(big)]);
+}
+
+await main();

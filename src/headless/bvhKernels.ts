@@ -1,0 +1,127 @@
+/**
+ * A kernel that traces rays through the GLSL BVH traversal (bvh.glsl), for
+ * the browser tests: `window.pathtraceBvh.trace(request)`. Ships in the
+ * headless page only.
+ */
+import bvhGlsl from '../shaders/scene/bvh.glsl?raw';
+import kernelFrag from '../shaders/test/bvh_kernels.frag?raw';
+import fullscreenVert from '../shaders/fullscreen.vert?raw';
+import { Program } from '../render/gl/program';
+import { FloatTarget } from '../render/gl/targets';
+import { createContext } from '../render/gl/context';
+import { BvhTextures, bvhDefines, uploadFloatTexture } from '../render/bvhTextures';
+import { BVH_TEXTURE_WIDTH, type PackedBvh } from '../render/bvh/pack';
+import { buildBvhAsync } from '../render/bvh/buildAsync';
+import { decodeMesh } from '../scene/mesh';
+
+export interface BvhTraceRequest {
+  /** base64 of the packed texture data, with their sizes. */
+  nodes: string;
+  nodesHeight: number;
+  triangles: string;
+  trianglesHeight: number;
+  /** base64 Float32Array, 8 floats per ray: origin, tMax, direction, 0. */
+  rays: string;
+  /** Rays per row of the output (width); rays.length / 8 / width rows. */
+  width: number;
+  mode: 'closest' | 'any' | 'surface';
+}
+
+const MODES = { closest: 0, any: 1, surface: 2 } as const;
+
+function fromBase64(text: string): Float32Array {
+  return new Float32Array(fromBase64Bytes(text).buffer);
+}
+
+function toBase64(data: Float32Array): string {
+  const bytes = new Uint8Array(data.buffer, data.byteOffset, data.byteLength);
+  let binary = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return btoa(binary);
+}
+
+let context: { gl: WebGL2RenderingContext; program: Program } | null = null;
+
+function kernelContext() {
+  if (!context) {
+    const gl = createContext(new OffscreenCanvas(1, 1), false);
+    const program = new Program(
+      gl,
+      [{ name: 'fullscreen.vert', source: fullscreenVert }],
+      [{ name: 'scene/bvh.glsl', source: bvhGlsl }, { name: 'test/bvh_kernels.frag', source: kernelFrag }],
+      bvhDefines(),
+    );
+    gl.bindVertexArray(gl.createVertexArray());
+    context = { gl, program };
+  }
+  return context;
+}
+
+/** Traces the request's rays; returns RGBA float32 per ray (closest: triangle, t, b1, b2; any: hit; surface: shading normal, material). */
+export function traceBvh(request: BvhTraceRequest): string {
+  const { gl, program } = kernelContext();
+  const width = BVH_TEXTURE_WIDTH;
+  const packed = {
+    nodes: { data: fromBase64(request.nodes), width, height: request.nodesHeight },
+    triangles: { data: fromBase64(request.triangles), width, height: request.trianglesHeight },
+  } as PackedBvh;
+  const rayData = fromBase64(request.rays);
+  const rayCount = rayData.length / 8;
+  const rows = Math.ceil(rayCount / request.width);
+  const rayTexels = new Float32Array(width * Math.ceil((rayCount * 2) / width) * 4);
+  rayTexels.set(rayData);
+  const textures = new BvhTextures(gl, packed);
+  const rays = uploadFloatTexture(gl, { data: rayTexels, width, height: rayTexels.length / 4 / width });
+  const target = new FloatTarget(gl, request.width, rows);
+  try {
+    program.use();
+    textures.bind(program, { nodes: 0, triangles: 1 });
+    gl.activeTexture(gl.TEXTURE2);
+    gl.bindTexture(gl.TEXTURE_2D, rays);
+    program.setUniforms({ uRays: 2, uMode: MODES[request.mode], uGridWidth: request.width }, { uRays: 'sampler2D', uMode: 'int', uGridWidth: 'int' });
+    gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
+    gl.viewport(0, 0, request.width, rows);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    const error = gl.getError();
+    if (error !== gl.NO_ERROR) throw new Error(`bvh kernel: WebGL error 0x${error.toString(16)}`);
+    return toBase64(target.read().subarray(0, rayCount * 4));
+  } finally {
+    target.dispose();
+    textures.dispose();
+    gl.deleteTexture(rays);
+  }
+}
+
+/** Builds a BVH in the page's worker over one mesh (base64 Float32 positions, Uint32 indices); returns the packed nodes and triangles (base64). */
+export async function buildInWorker(positions: string, indices: string, material: number): Promise<{ nodes: string; triangles: string; depth: number }> {
+  const index = fromBase64(indices);
+  const mesh = { positions: fromBase64(positions), normals: null, indices: new Uint32Array(index.buffer), material };
+  const packed = await buildBvhAsync([mesh]);
+  return { nodes: toBase64(packed.nodes.data), triangles: toBase64(packed.triangles.data), depth: packed.depth };
+}
+
+/** Decodes a mesh file in the page (base64 bytes); returns its arrays as base64, or the AssetError's message. */
+export async function decodeInPage(fileName: string, bytes: string): Promise<{ positions: string; normals: string | null; indices: string } | { error: string }> {
+  const raw = fromBase64Bytes(bytes);
+  try {
+    const mesh = await decodeMesh(raw, fileName);
+    return { positions: toBase64(mesh.positions), normals: mesh.normals ? toBase64(mesh.normals) : null, indices: toBase64(new Float32Array(mesh.indices.buffer)) };
+  } catch (error) {
+    return { error: `${(error as Error).name}: ${(error as Error).message}` };
+  }
+}
+
+function fromBase64Bytes(text: string): Uint8Array {
+  const binary = atob(text);
+  const bytes = new Uint8Array(binary.length);
+  for (let i = 0; i < binary.length; i++) bytes[i] = binary.charCodeAt(i);
+  return bytes;
+}
+
+declare global {
+  interface Window {
+    pathtraceBvh: { trace: typeof traceBvh; buildInWorker: typeof buildInWorker; decodeInPage: typeof decodeInPage };
+  }
+}
+
+window.pathtraceBvh = { trace: traceBvh, buildInWorker, decodeInPage };

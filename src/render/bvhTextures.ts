@@ -1,0 +1,60 @@
+/**
+ * The packed BVH (src/render/bvh/pack.ts) as two RGBA32F textures for
+ * src/shaders/scene/bvh.glsl: `uBvhNodes` and `uBvhTriangles`. Upload once
+ * per scene; bind to two texture units before each draw with a program
+ * that includes bvh.glsl (compiled with `bvhDefines()`).
+ */
+import type { Program } from './gl/program';
+import { BVH_TEXTURE_WIDTH, type PackedBvh, type TextureData } from './bvh/pack';
+import { MAX_BVH_DEPTH } from './bvh/build';
+
+/** The #defines bvh.glsl expects (its defaults equal these; pass them to keep TS and GLSL in one place). */
+export function bvhDefines(): Record<string, number> {
+  return { BVH_TEXTURE_WIDTH_LOG2: Math.log2(BVH_TEXTURE_WIDTH), BVH_STACK_SIZE: MAX_BVH_DEPTH };
+}
+
+export class BvhTextures {
+  readonly nodes: WebGLTexture;
+  readonly triangles: WebGLTexture;
+
+  constructor(
+    private readonly gl: WebGL2RenderingContext,
+    packed: PackedBvh,
+  ) {
+    const maxSize = gl.getParameter(gl.MAX_TEXTURE_SIZE) as number;
+    for (const [name, data] of [['nodes', packed.nodes], ['triangles', packed.triangles]] as const) {
+      if (data.width > maxSize || data.height > maxSize) {
+        throw new Error(`the BVH ${name} need a ${data.width}x${data.height} texture; this GPU allows ${maxSize}x${maxSize} (too many triangles)`);
+      }
+    }
+    this.nodes = uploadFloatTexture(gl, packed.nodes);
+    this.triangles = uploadFloatTexture(gl, packed.triangles);
+  }
+
+  /** Binds the textures to the given units and points the program's samplers at them (the program must be in use). */
+  bind(program: Program, units: { nodes: number; triangles: number }): void {
+    const gl = this.gl;
+    gl.activeTexture(gl.TEXTURE0 + units.nodes);
+    gl.bindTexture(gl.TEXTURE_2D, this.nodes);
+    gl.activeTexture(gl.TEXTURE0 + units.triangles);
+    gl.bindTexture(gl.TEXTURE_2D, this.triangles);
+    program.setUniforms({ uBvhNodes: units.nodes, uBvhTriangles: units.triangles }, { uBvhNodes: 'sampler2D', uBvhTriangles: 'sampler2D' });
+  }
+
+  dispose(): void {
+    this.gl.deleteTexture(this.nodes);
+    this.gl.deleteTexture(this.triangles);
+  }
+}
+
+/** An RGBA32F texture of `data`, nearest filtering (read with texelFetch). */
+export function uploadFloatTexture(gl: WebGL2RenderingContext, data: TextureData): WebGLTexture {
+  const texture = gl.createTexture()!;
+  gl.bindTexture(gl.TEXTURE_2D, texture);
+  gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, data.width, data.height);
+  gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, data.width, data.height, gl.RGBA, gl.FLOAT, data.data);
+  // RGBA32F is not filterable in WebGL2: every read is a texelFetch.
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+  return texture;
+}

@@ -1,0 +1,74 @@
+/**
+ * The checks every mesh decoder ends with: finite vertices and normals,
+ * indices in range, degenerate (zero-area) triangles dropped, at least one
+ * triangle left. Decoders build raw arrays; this turns them into a
+ * TriangleMesh or throws an AssetError saying what is wrong.
+ */
+import { AssetError } from '../assetError';
+import type { TriangleMesh } from '../types';
+
+export interface RawMesh {
+  positions: ArrayLike<number>;
+  /** 3 per vertex, or null when the file does not give a normal for every corner. */
+  normals: ArrayLike<number> | null;
+  indices: ArrayLike<number>;
+}
+
+export function finalizeMesh(raw: RawMesh): TriangleMesh {
+  const vertexCount = Math.floor(raw.positions.length / 3);
+  const positions = Float32Array.from(raw.positions);
+  for (let i = 0; i < positions.length; i++) {
+    if (!Number.isFinite(positions[i])) throw new AssetError(`vertex ${Math.floor(i / 3)} has a non-finite coordinate (${raw.positions[i]})`);
+  }
+  const normals = raw.normals ? normalizedNormals(raw.normals, vertexCount) : null;
+  if (raw.indices.length % 3 !== 0) throw new AssetError(`the index count ${raw.indices.length} is not a multiple of 3`);
+  const kept = new Uint32Array(raw.indices.length);
+  let keptCount = 0;
+  for (let t = 0; t < raw.indices.length; t += 3) {
+    const a = raw.indices[t];
+    const b = raw.indices[t + 1];
+    const c = raw.indices[t + 2];
+    for (const index of [a, b, c]) {
+      if (!Number.isInteger(index) || index < 0 || index >= vertexCount) {
+        throw new AssetError(`triangle ${t / 3} references vertex ${index}, but the file has ${vertexCount} vertices`);
+      }
+    }
+    if (isDegenerate(positions, a, b, c)) continue; // zero area: no surface to hit
+    kept[keptCount++] = a;
+    kept[keptCount++] = b;
+    kept[keptCount++] = c;
+  }
+  if (raw.indices.length === 0) throw new AssetError('the file has no triangles');
+  if (keptCount === 0) throw new AssetError('every triangle of the file has zero area');
+  return { positions, normals, indices: kept.slice(0, keptCount) };
+}
+
+/** Unit normals; a zero normal stays zero (the shader then falls back to the face normal). */
+function normalizedNormals(source: ArrayLike<number>, vertexCount: number): Float32Array {
+  if (source.length < vertexCount * 3) throw new AssetError(`the file gives ${Math.floor(source.length / 3)} normals for ${vertexCount} vertices`);
+  const normals = new Float32Array(vertexCount * 3);
+  for (let v = 0; v < vertexCount; v++) {
+    const x = source[v * 3];
+    const y = source[v * 3 + 1];
+    const z = source[v * 3 + 2];
+    if (!Number.isFinite(x) || !Number.isFinite(y) || !Number.isFinite(z)) throw new AssetError(`vertex ${v} has a non-finite normal`);
+    const length = Math.hypot(x, y, z);
+    const scale = length > 0 ? 1 / length : 0;
+    normals[v * 3] = x * scale;
+    normals[v * 3 + 1] = y * scale;
+    normals[v * 3 + 2] = z * scale;
+  }
+  return normals;
+}
+
+/** Exactly zero area (in double precision over the float32 coordinates), repeated vertices included. */
+function isDegenerate(p: Float32Array, a: number, b: number, c: number): boolean {
+  if (a === b || b === c || a === c) return true;
+  const e1x = p[b * 3] - p[a * 3];
+  const e1y = p[b * 3 + 1] - p[a * 3 + 1];
+  const e1z = p[b * 3 + 2] - p[a * 3 + 2];
+  const e2x = p[c * 3] - p[a * 3];
+  const e2y = p[c * 3 + 1] - p[a * 3 + 1];
+  const e2z = p[c * 3 + 2] - p[a * 3 + 2];
+  return e1y * e2z - e1z * e2y === 0 && e1z * e2x - e1x * e2z === 0 && e1x * e2y - e1y * e2x === 0;
+}

@@ -1,0 +1,36 @@
+/**
+ * Mesh files to TriangleMesh: `decodeMesh` picks the decoder by extension.
+ * Every decoder throws AssetError (without the scene path; the caller
+ * prefixes `meshes[i].file: `) for a file it cannot accept: unreadable or
+ * corrupt, no triangles, a non-finite vertex, an out-of-range index, a header
+ * that promises more data than there is. Degenerate (zero-area) triangles
+ * are dropped (finalize.ts). Pure TypeScript: Node and the browser.
+ */
+import { AssetError } from '../assetError';
+import type { TriangleMesh } from '../types';
+import { decodeGltf, type ResourceResolver } from './gltf';
+import { decodeObj } from './obj';
+import { decodePly } from './ply';
+
+export type { ResourceResolver } from './gltf';
+export { encodePly } from './plyEncode';
+export { meshToWorldMatrix, transformMesh, applyMatrix, type MeshTransform } from './transform';
+
+export const MESH_EXTENSIONS = ['.obj', '.ply', '.gltf', '.glb'] as const;
+
+export interface DecodeMeshOptions {
+  /** Reads a `.gltf`'s external buffer by its URI; without it such files are rejected. */
+  resolveResource?: ResourceResolver;
+}
+
+export async function decodeMesh(bytes: Uint8Array, fileName: string, options: DecodeMeshOptions = {}): Promise<TriangleMesh> {
+  const extension = /\.[^./\\]+$/.exec(fileName.toLowerCase())?.[0] ?? '';
+  if (bytes.length === 0) throw new AssetError('the file is empty');
+  switch (extension) {
+    case '.obj': return decodeObj(bytes);
+    case '.ply': return decodePly(bytes);
+    case '.gltf': return decodeGltf(bytes, false, options.resolveResource);
+    case '.glb': return decodeGltf(bytes, true);
+    default: throw new AssetError(`unsupported mesh file type "${extension || fileName}" (use ${MESH_EXTENSIONS.join(', ')})`);
+  }
+}

@@ -1,0 +1,222 @@
+/**
+ * The GLSL BVH traversal (src/shaders/scene/bvh.glsl) in the browser,
+ * against the TypeScript reference over the same packed textures: the
+ * closest hit of random rays over the bunny equals brute force over every
+ * triangle, any-hit agrees, the surface's interpolated normal and material
+ * are right; and the watertight test lets no ray aimed exactly at a shared
+ * edge or vertex of an icosphere slip through.
+ */
+import { readFileSync } from 'node:fs';
+import { describe, expect, it } from 'vitest';
+import { buildBvh, type BvhMeshInput } from '../../src/render/bvh/build';
+import { packBvh, type PackedBvh } from '../../src/render/bvh/pack';
+import { buildAndPack } from '../../src/render/bvh/worker';
+import { bruteForce, type Vec3 } from '../../src/render/bvh/traverse';
+import { transformMesh } from '../../src/scene/mesh/transform';
+import { decodeMesh } from '../../src/scene/mesh';
+import type { BvhTraceRequest } from '../../src/headless/bvhKernels';
+import { useRenderSession } from '../support/browser';
+import { icosphere } from '../support/icosphere';
+import { random } from '../support/bvhScenes';
+
+const base64 = (data: Float32Array) => Buffer.from(data.buffer, data.byteOffset, data.byteLength).toString('base64');
+
+type Ray = { origin: Vec3; dir: Vec3; tMax: number };
+
+/** Rays as the kernel reads them (float32), so the TypeScript side uses the same numbers. */
+function rayData(rays: Ray[]): Float32Array {
+  const data = new Float32Array(rays.length * 8);
+  rays.forEach((r, i) => data.set([...r.origin, r.tMax, ...r.dir, 0], i * 8));
+  return data;
+}
+
+const f32Ray = (data: Float32Array, i: number): Ray => ({
+  origin: [data[i * 8], data[i * 8 + 1], data[i * 8 + 2]],
+  dir: [data[i * 8 + 4], data[i * 8 + 5], data[i * 8 + 6]],
+  tMax: data[i * 8 + 3] >= 3e38 ? Infinity : data[i * 8 + 3],
+});
+
+describe('GLSL BVH traversal', () => {
+  const session = useRenderSession();
+
+  async function trace(packed: PackedBvh, rays: Float32Array, mode: BvhTraceRequest['mode']): Promise<Float32Array> {
+    const request: BvhTraceRequest = {
+      nodes: base64(packed.nodes.data), nodesHeight: packed.nodes.height,
+      triangles: base64(packed.triangles.data), trianglesHeight: packed.triangles.height,
+      rays: base64(rays), width: 64, mode,
+    };
+    const out = await session().page.evaluate((r) => window.pathtraceBvh.trace(r), request);
+    const bytes = Buffer.from(out, 'base64');
+    return new Float32Array(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength));
+  }
+
+  async function bunnyScene() {
+    const bunny = await decodeMesh(new Uint8Array(readFileSync(new URL('../fixtures/meshes/bunny.ply', import.meta.url))), 'bunny.ply');
+    const meshes: BvhMeshInput[] = [{ ...bunny, material: 3 }, { ...transformMesh(icosphere(2, false), { position: [0.3, 0, 0], scale: 0.02 }), material: 5 }];
+    return { meshes, packed: packBvh(buildBvh(meshes), meshes) };
+  }
+
+  /** Random rays over the bunny's bounds: half aimed at a random triangle, some with a finite tMax. */
+  function randomRays(packed: PackedBvh, count: number, seed: number): Float32Array {
+    const r = random(seed);
+    const tris = packed.triangles.data;
+    const lo = Array.from(packed.nodes.data.subarray(0, 3));
+    const hi = Array.from(packed.nodes.data.subarray(4, 7));
+    const rays: Ray[] = [];
+    for (let i = 0; i < count; i++) {
+      const origin = [0, 1, 2].map((k) => lo[k] + (r() * 3 - 1) * (hi[k] - lo[k])) as unknown as Vec3;
+      let dir = [0, 1, 2].map(() => r() * 2 - 1) as unknown as Vec3;
+      if (i % 2 === 0) {
+        const j = Math.floor(r() * packed.triangleCount) * 12;
+        const [b1, b2] = [r() * 0.5, r() * 0.5];
+        dir = [0, 1, 2].map((k) => tris[j + k] * (1 - b1 - b2) + tris[j + 4 + k] * b1 + tris[j + 8 + k] * b2 - origin[k]) as unknown as Vec3;
+      }
+      rays.push({ origin, dir, tMax: i % 5 === 0 ? r() * 0.2 : 3.4e38 });
+    }
+    return rayData(rays);
+  }
+
+  it('closest hit equals brute force over every triangle (bunny, 4096 random rays)', async () => {
+    const { packed } = await bunnyScene();
+    const rays = randomRays(packed, 4096, 1);
+    const out = await trace(packed, rays, 'closest');
+    let hits = 0;
+    const mismatches: string[] = [];
+    for (let i = 0; i < 4096; i++) {
+      const ray = f32Ray(rays, i);
+      const expected = bruteForce(packed, ray.origin, ray.dir, ray.tMax);
+      const [triangle, t] = out.subarray(i * 4, i * 4 + 2);
+      if (expected) hits++;
+      const same = expected
+        ? triangle >= 0 && Math.abs(t - expected.t) <= 1e-4 * expected.t
+        : triangle === -1;
+      if (!same) mismatches.push(`ray ${i}: GLSL ${triangle} at ${t}, brute force ${expected?.triangle} at ${expected?.t}`);
+      // A different triangle at the same t is a tie on a shared edge; the GLSL's own triangle must be hit there.
+      if (same && expected && triangle !== expected.triangle) {
+        const own = bruteForceOne(packed, triangle, ray);
+        if (own === null || Math.abs(own - t) > 1e-4 * t) mismatches.push(`ray ${i}: GLSL triangle ${triangle} is not hit at ${t}`);
+      }
+    }
+    expect(hits, 'most rays must hit something').toBeGreaterThan(1500);
+    expect(mismatches.slice(0, 10)).toEqual([]);
+  });
+
+  it('any-hit agrees with brute force on whether anything is hit before tMax', async () => {
+    const { packed } = await bunnyScene();
+    const rays = randomRays(packed, 4096, 2);
+    const out = await trace(packed, rays, 'any');
+    const wrong: number[] = [];
+    for (let i = 0; i < 4096; i++) {
+      const ray = f32Ray(rays, i);
+      if ((out[i * 4] === 1) !== (bruteForce(packed, ray.origin, ray.dir, ray.tMax) !== null)) wrong.push(i);
+    }
+    expect(wrong).toEqual([]);
+  });
+
+  it('the surface: interpolated vertex normal (smooth bunny), face normal (flat sphere), material', async () => {
+    const { packed } = await bunnyScene();
+    const rays = randomRays(packed, 4096, 3);
+    const hits = await trace(packed, rays, 'closest');
+    const surfaces = await trace(packed, rays, 'surface');
+    const tris = packed.triangles.data;
+    let checked = 0;
+    for (let i = 0; i < 4096; i++) {
+      const j = hits[i * 4];
+      if (j < 0) continue;
+      const [b1, b2] = [hits[i * 4 + 2], hits[i * 4 + 3]];
+      const v = (c: number, k: number) => tris[j * 12 + c * 4 + k];
+      const normalTexel = tris[j * 12 + 7];
+      let n: number[];
+      if (normalTexel >= 0) {
+        n = [0, 1, 2].map((k) => (1 - b1 - b2) * tris[normalTexel * 4 + k] + b1 * tris[(normalTexel + 1) * 4 + k] + b2 * tris[(normalTexel + 2) * 4 + k]);
+      } else {
+        const e1 = [0, 1, 2].map((k) => v(1, k) - v(0, k));
+        const e2 = [0, 1, 2].map((k) => v(2, k) - v(0, k));
+        n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+      }
+      const length = Math.hypot(...n);
+      for (let k = 0; k < 3; k++) expect(Math.abs(surfaces[i * 4 + k] - n[k] / length)).toBeLessThan(1e-4);
+      expect(surfaces[i * 4 + 3]).toBe(tris[j * 12 + 3]);
+      checked++;
+    }
+    expect(checked).toBeGreaterThan(1500);
+  });
+
+  it('the page builds the same BVH in its Web Worker as Node does', async () => {
+    const mesh = transformMesh(icosphere(4, false), { rotation: [10, 20, 30] });
+    const b64 = (a: Float32Array | Uint32Array) => Buffer.from(a.buffer, a.byteOffset, a.byteLength).toString('base64');
+    const built = await session().page.evaluate(([p, i]) => window.pathtraceBvh.buildInWorker(p, i, 2), [b64(mesh.positions), b64(mesh.indices)] as const);
+    const expected = buildAndPack([{ ...mesh, material: 2 }]);
+    expect(built.depth).toBe(expected.depth);
+    expect(built.nodes).toBe(b64(expected.nodes.data));
+    expect(built.triangles).toBe(b64(expected.triangles.data));
+  });
+
+  it('watertight: rays crossing an icosphere exactly at shared edges and vertices always hit', async () => {
+    // An off-centre, rotated, unevenly scaled sphere, so no coordinate is round.
+    const mesh = transformMesh(icosphere(3, false), { position: [0.37, -1.21, 0.93], rotation: [17, 41, -73], scale: [1.3, 0.7, 1.1] });
+    const meshes = [{ ...mesh, material: 0 }];
+    const packed = packBvh(buildBvh(meshes), meshes);
+    const p = mesh.positions;
+    const vertex = (v: number) => [p[v * 3], p[v * 3 + 1], p[v * 3 + 2]];
+    const faceNormal = (t: number) => {
+      const [a, b, c] = [0, 1, 2].map((k) => vertex(mesh.indices[t * 3 + k]));
+      const e1 = [0, 1, 2].map((k) => b[k] - a[k]);
+      const e2 = [0, 1, 2].map((k) => c[k] - a[k]);
+      const n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+      return n.map((x) => x / Math.hypot(...n));
+    };
+    // Targets: every vertex and two points on every edge, with the faces that share them.
+    const targets: { point: number[]; faces: number[] }[] = [];
+    const facesOf = new Map<number, number[]>();
+    const edges = new Map<string, { a: number; b: number; faces: number[] }>();
+    for (let t = 0; t < mesh.indices.length / 3; t++) {
+      for (let e = 0; e < 3; e++) {
+        const a = mesh.indices[t * 3 + e];
+        const b = mesh.indices[t * 3 + ((e + 1) % 3)];
+        facesOf.set(a, [...(facesOf.get(a) ?? []), t]);
+        const key = a < b ? `${a},${b}` : `${b},${a}`;
+        const edge = edges.get(key) ?? { a, b, faces: [] };
+        edge.faces.push(t);
+        edges.set(key, edge);
+      }
+    }
+    for (const [v, faces] of facesOf) targets.push({ point: vertex(v), faces });
+    for (const { a, b, faces } of edges.values()) {
+      expect(faces.length, 'closed mesh: two faces per edge').toBe(2);
+      for (const s of [0.5, 0.25]) targets.push({ point: [0, 1, 2].map((k) => Math.fround(p[a * 3 + k] * (1 - s) + p[b * 3 + k] * s)), faces });
+    }
+    const r = random(7);
+    const rays: Ray[] = [];
+    let tangent = 0;
+    for (const { point, faces } of targets) {
+      // From outside (random far points) and from inside (near the centre).
+      for (const scale of [6, 0.2]) {
+        const origin = [0.37 + (r() * 2 - 1) * scale, -1.21 + (r() * 2 - 1) * scale, 0.93 + (r() * 2 - 1) * scale] as unknown as Vec3;
+        const dir = [0, 1, 2].map((k) => point[k] - origin[k]) as unknown as Vec3;
+        // A ray that only grazes the surface there (the faces around the point
+        // face it from both sides, or edge-on) may rightly miss: it touches a
+        // silhouette, and rounding the target moves it off. Only crossings count.
+        const cosines = faces.map((t) => faceNormal(t).reduce((sum, n, k) => sum + n * dir[k], 0) / Math.hypot(...dir));
+        if (!(cosines.every((c) => c > 0.02) || cosines.every((c) => c < -0.02))) {
+          tangent++;
+          continue;
+        }
+        rays.push({ origin, dir, tMax: 3.4e38 });
+      }
+    }
+    const data = rayData(rays);
+    const out = await trace(packed, data, 'closest');
+    const missed: number[] = [];
+    for (let i = 0; i < rays.length; i++) if (out[i * 4] < 0) missed.push(i);
+    expect(rays.length).toBeGreaterThan(5000);
+    expect(tangent).toBeLessThan(rays.length / 10);
+    expect(missed.length, `missed rays (first: ${missed.slice(0, 5)})`).toBe(0);
+  });
+});
+
+/** t of `ray` on triangle j alone, or null. */
+function bruteForceOne(packed: PackedBvh, j: number, ray: Ray): number | null {
+  const single = { ...packed, triangleCount: 1, triangles: { ...packed.triangles, data: packed.triangles.data.subarray(j * 12, j * 12 + 12) } };
+  return bruteForce(single, ray.origin, ray.dir, ray.tMax)?.t ?? null;
+}
