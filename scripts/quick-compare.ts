@@ -5,11 +5,13 @@
  * Writes ours and the reference as PNG previews to test-output/quick-NAME-*.png.
  */
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
-import { decodePfm } from '../src/cli/pfm';
+import { decodePfm } from '../src/image/pfm';
 import { encodePng } from '../src/cli/png';
 import { blockMeans, meanValue, relativeMse, type LinearImage } from '../src/node/imageMetrics';
 import { openRenderSession } from '../src/node/session';
 import { parseSceneText } from '../src/scene/schema';
+import { readSceneFiles } from '../src/node/sceneFiles';
+import { fileURLToPath } from 'node:url';
 
 const FIXTURES = new URL('../test/fixtures/', import.meta.url);
 
@@ -36,7 +38,8 @@ async function main(argv: string[]): Promise<void> {
       const scene = parseSceneText(readFileSync(new URL(`scenes/${name}.json`, FIXTURES), 'utf8'));
       const pfm = decodePfm(readFileSync(new URL(`references/${name}.pfm`, FIXTURES)));
       const reference: LinearImage = { width: pfm.width, height: pfm.height, channels: 3, data: pfm.rgb };
-      await session.load(scene, { width: scene.image.width, height: scene.image.height, seed: 1 });
+      const { files } = await readSceneFiles(scene, fileURLToPath(new URL(`scenes/${name}.json`, FIXTURES)));
+      await session.load(scene, { width: scene.image.width, height: scene.image.height, seed: 1 }, files);
       const start = performance.now();
       await session.render(spp);
       const seconds = (performance.now() - start) / 1000;

@@ -39,7 +39,7 @@ let context: { gl: WebGL2RenderingContext; program: Program } | null = null;
 function kernelContext() {
   if (!context) {
     const gl = createContext(new OffscreenCanvas(1, 1), false);
-    const defines = { LOW_DISCREPANCY: 0, ...Object.fromEntries(ENVIRONMENT_KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i])) };
+    const defines = { LOW_DISCREPANCY: 0, HAS_ENV_MAP: 1, ...Object.fromEntries(ENVIRONMENT_KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i])) };
     const chunks = [
       { name: 'common/math.glsl', source: mathGlsl },
       { name: 'common/rng.glsl', source: rngGlsl },

@@ -6,6 +6,7 @@
 import { PathTracer } from '../render/PathTracer';
 import type { DisplayOptions } from '../render/passes/display';
 import type { SamplerKind } from '../render/sampling';
+import { loadSceneAssets } from '../scene/assets';
 import type { Scene } from '../scene/types';
 import { runKernel, type KernelRequest } from './kernels';
 // Registers window.pathtraceEnvironmentKernels (environment-map test kernels).
@@ -27,7 +28,8 @@ export interface LoadOptions {
 export interface HeadlessApi {
   /** Capabilities of this browser, checked by every browser test first. */
   probe(): { webgl2: boolean; floatTargets: boolean; renderer: string };
-  load(scene: Scene, options: LoadOptions): { renderer: string };
+  /** `files`: the bytes (base64) of the files the scene names, by name as written; decoded here. */
+  load(scene: Scene, options: LoadOptions, files?: Record<string, string>): Promise<{ renderer: string }>;
   /** Renders `samples` more spp in draws of `samplesPerDraw`, waits for the GPU. */
   render(samples: number, samplesPerDraw: number): { sampleCount: number; milliseconds: number };
   /** Discards the accumulated samples (keeps the compiled shaders: for timing). */
@@ -50,6 +52,13 @@ function requireTracer(): PathTracer {
   return tracer;
 }
 
+function fromBase64(text: string): Uint8Array {
+  const binary = atob(text);
+  const bytes = new Uint8Array(binary.length);
+  for (let i = 0; i < binary.length; i++) bytes[i] = binary.charCodeAt(i);
+  return bytes;
+}
+
 function toBase64(bytes: Uint8Array): string {
   let binary = '';
   const chunk = 0x8000;
@@ -67,9 +76,13 @@ const api: HeadlessApi = {
     const renderer = gl && debug ? String(gl.getParameter(debug.UNMASKED_RENDERER_WEBGL)) : '';
     return { webgl2: !!gl, floatTargets, renderer };
   },
-  load(scene, options) {
+  async load(scene, options, files = {}) {
+    const assets = await loadSceneAssets(scene, async (name) => {
+      if (!(name in files)) throw new Error('no such file was given to the page');
+      return fromBase64(files[name]);
+    });
     tracer?.dispose();
-    tracer = new PathTracer(undefined, scene, options);
+    tracer = new PathTracer(undefined, scene, { ...options, assets });
     loseContextExtension = tracer.gl.getExtension('WEBGL_lose_context');
     return { renderer: tracer.renderer };
   },

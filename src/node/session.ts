@@ -64,8 +64,11 @@ export interface SessionOptions {
 }
 
 export interface RenderSession {
-  /** Loads a parsed scene into a fresh PathTracer in the page. */
-  load(scene: Scene, options: LoadOptions): Promise<{ renderer: string }>;
+  /**
+   * Loads a parsed scene into a fresh PathTracer in the page, with the bytes
+   * of the files it names (by name as written; see readSceneFiles).
+   */
+  load(scene: Scene, options: LoadOptions, files?: Record<string, Uint8Array>): Promise<{ renderer: string }>;
   /** Renders `samples` more samples per pixel (split into draws internally); resolves with the total. */
   render(samples: number): Promise<number>;
   /** Discards the accumulated samples; the shaders stay compiled (the benchmark times from here). */
@@ -147,9 +150,10 @@ function createSession(page: Page, browser: Browser, server: StaticServer, pageE
   return {
     page,
     probe: () => call('probe'),
-    async load(scene, options) {
+    async load(scene, options, files = {}) {
       pixels = options.width * options.height;
-      return call('load', scene, options);
+      const encoded = Object.fromEntries(Object.entries(files).map(([name, bytes]) => [name, Buffer.from(bytes).toString('base64')]));
+      return call('load', scene, options, encoded);
     },
     async render(samples) {
       const perDraw = Math.max(1, Math.floor(SAMPLES_PER_DRAW_BUDGET / pixels));

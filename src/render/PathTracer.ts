@@ -8,6 +8,7 @@
  * recompile shaders. A lost WebGL context is restored by itself: resources are
  * rebuilt and accumulation starts again.
  */
+import { NO_ASSETS, type SceneAssets } from '../scene/assets';
 import type { Scene } from '../scene/types';
 import { type AnyCanvas, createContext, rendererInfo, requireFloatTargets } from './gl/context';
 import { PingPong } from './gl/targets';
@@ -33,6 +34,8 @@ export interface PathTracerOptions {
   russianRoulette?: boolean;
   /** Keep the canvas contents after compositing (needed to screenshot it). Default false. */
   preserveDrawingBuffer?: boolean;
+  /** The decoded files the scene names (`loadSceneAssets`); needed when it has a map or meshes. */
+  assets?: SceneAssets;
 }
 
 interface Resources {
@@ -45,6 +48,7 @@ export class PathTracer {
   readonly canvas: AnyCanvas;
   readonly gl: WebGL2RenderingContext;
   private scene: Scene;
+  private assets: SceneAssets;
   private seed: number;
   private readonly sampler: SamplerKind;
   private readonly russianRoulette: boolean;
@@ -57,6 +61,7 @@ export class PathTracer {
     this.size = { width: options.width ?? scene.image.width, height: options.height ?? scene.image.height };
     this.canvas = canvas ?? new OffscreenCanvas(this.size.width, this.size.height);
     this.scene = scene;
+    this.assets = options.assets ?? NO_ASSETS;
     this.seed = options.seed ?? 0;
     this.sampler = options.sampler ?? 'kronecker';
     this.russianRoulette = options.russianRoulette ?? false;
@@ -93,11 +98,22 @@ export class PathTracer {
     return this.scene;
   }
 
-  /** Replaces the scene (re-upload only) and restarts accumulation. */
-  setScene(scene: Scene): void {
+  /**
+   * Replaces the scene (re-upload only; a scene that uses a feature no
+   * earlier scene used compiles its program variant once) and restarts
+   * accumulation. `assets` holds the files it names; without it the current
+   * ones are kept. Throws SceneError, changing nothing, when a file the scene
+   * names is not in the assets.
+   */
+  setScene(scene: Scene, assets: SceneAssets = this.assets): void {
+    this.resources?.trace.setScene(scene, assets, this.size.width, this.size.height);
     this.scene = scene;
-    this.resources?.trace.setScene(scene, this.size.width, this.size.height);
+    this.assets = assets;
     this.reset();
+  }
+
+  get currentAssets(): SceneAssets {
+    return this.assets;
   }
 
   /** Changes the render resolution (and the canvas's drawing buffer) and restarts. */
@@ -108,7 +124,7 @@ export class PathTracer {
     if (this.resources) {
       this.resources.sums.dispose();
       this.resources.sums = new PingPong(this.gl, this.size.width, this.size.height);
-      this.resources.trace.setScene(this.scene, this.size.width, this.size.height);
+      this.resources.trace.setScene(this.scene, this.assets, this.size.width, this.size.height);
     }
     this.reset();
   }
@@ -208,7 +224,7 @@ export class PathTracer {
     const trace = new TracePass(this.gl, this.sampler, this.russianRoulette);
     const display = new DisplayPass(this.gl);
     const sums = new PingPong(this.gl, this.size.width, this.size.height);
-    trace.setScene(this.scene, this.size.width, this.size.height);
+    trace.setScene(this.scene, this.assets, this.size.width, this.size.height);
     // An empty vertex array: the full-screen triangle comes from gl_VertexID.
     this.gl.bindVertexArray(this.gl.createVertexArray());
     return { trace, display, sums };

@@ -19,6 +19,13 @@ export interface SceneFeatures {
   /** Caustic guides compiled in (0..MAX_GUIDES). */
   guides: number;
   dielectric: boolean;
+  environmentMap: boolean;
+}
+
+/** What packing needs to know of the scene's decoded files. */
+export interface PackOptions {
+  /** The integral of the environment map's luminance over the sphere (its distribution's), when the scene has one. */
+  environmentIntegral?: number;
 }
 
 export interface PackedScene {
@@ -34,7 +41,7 @@ interface SceneSphere extends GuideSphere {
   radiance: Vec3;
 }
 
-export function packScene(scene: Scene): PackedScene {
+export function packScene(scene: Scene, options: PackOptions = {}): PackedScene {
   const data = new Float32Array(DATA_TEXELS * 4);
   const block = new Float32Array(BLOCK_VEC4S * 4);
   const materials: Float32Array[] = [];
@@ -42,7 +49,9 @@ export function packScene(scene: Scene): PackedScene {
 
   const spheres = sceneSpheres(scene);
   const emitters = spheres.flatMap((s, index) => (power(s) > 0 ? [{ index, sphere: s }] : []));
-  const alias = buildAliasTable(emitters.map((e) => power(e.sphere)));
+  const environmentPower = mapEnvironmentPower(scene, spheres, options.environmentIntegral);
+  const powers = [...emitters.map((e) => power(e.sphere)), ...(environmentPower > 0 ? [environmentPower] : [])];
+  const alias = buildAliasTable(powers);
   const emitterPdf = new Map(emitters.map((e, i) => [e.index, alias.pdf[i]]));
 
   spheres.forEach((sphere, i) => {
@@ -60,6 +69,12 @@ export function packScene(scene: Scene): PackedScene {
       primitive: index,
     });
     data.set(record, (SECTIONS.emitters + i * EMITTER.texels) * 4);
+  });
+  if (environmentPower > 0) {
+    const record = packRecord(EMITTER, { pdf: alias.pdf[emitters.length], kind: EMITTER_KINDS.environment, primitive: -1 });
+    data.set(record, (SECTIONS.emitters + emitters.length * EMITTER.texels) * 4);
+  }
+  powers.forEach((_, i) => {
     const choice = packRecord(EMITTER_CHOICE, { aliasThreshold: alias.threshold[i], alias: alias.alias[i] });
     data.set(choice, (SECTIONS.emitterChoices + i * EMITTER_CHOICE.texels) * 4);
   });
@@ -70,12 +85,13 @@ export function packScene(scene: Scene): PackedScene {
   const environment = scene.environment;
   const header = packRecord(HEADER, {
     sphereCount: spheres.length,
-    emitterCount: emitters.length,
+    emitterCount: powers.length,
     groundEnabled: scene.ground ? 1 : 0,
     guideCount: guides.length,
     groundHeight: scene.ground?.height ?? 0,
     groundMaterial,
     environment: environment && 'color' in environment ? scale(environment.color, environment.intensity) : [0, 0, 0],
+    environmentPdf: environmentPower > 0 ? alias.pdf[emitters.length] : 0,
   });
   block.set(header, 0);
   // The guides' geometry itself, not indices: the shader reads it with
@@ -86,7 +102,8 @@ export function packScene(scene: Scene): PackedScene {
     block.set([...spheres[light].center, spheres[light].radius], base + GUIDE_FIELDS.LIGHT * 4);
   });
   const dielectric = spheres.some((s) => s.material !== 'emitterOnly' && s.material.type === 'dielectric');
-  return { data, block, features: { guides: guides.length, dielectric } };
+  const environmentMap = environment !== null && 'map' in environment;
+  return { data, block, features: { guides: guides.length, dielectric, environmentMap } };
 }
 
 /** The scene's spheres in shader order: `spheres`, then `lights` as emitter-only spheres. */
@@ -116,9 +133,28 @@ function emittedRadiance(m: Material): Vec3 {
   return m.emission ? scale(m.emission.color, m.emission.intensity) : [0, 0, 0];
 }
 
-/** Emitted power up to constant factors (pi * area * mean radiance). */
+/** Emitted power of a sphere: pi * 4 pi r^2 * luminance of its radiance. */
 function power(s: SceneSphere): number {
-  return (s.radiance[0] + s.radiance[1] + s.radiance[2]) * s.radius * s.radius;
+  return 4 * Math.PI * Math.PI * s.radius * s.radius * luminance(s.radiance);
 }
+
+/**
+ * Power of the environment map as pbrt-v4 estimates an infinite light's:
+ * pi R^2 times its luminance integrated over the sphere, R the radius of a
+ * sphere around the scene's objects and camera (at least 1). 0 when the
+ * scene has no map or a black one.
+ */
+function mapEnvironmentPower(scene: Scene, spheres: readonly SceneSphere[], integral = 0): number {
+  const environment = scene.environment;
+  if (!environment || !('map' in environment) || !(integral > 0) || !(environment.intensity > 0)) return 0;
+  const points = [scene.camera.position, ...spheres.map((s) => s.center), ...scene.meshes.map((m) => m.position)];
+  const center = [0, 1, 2].map((k) => points.reduce((sum, p) => sum + p[k], 0) / points.length);
+  let radius = 1;
+  for (const p of points) radius = Math.max(radius, Math.hypot(p[0] - center[0], p[1] - center[1], p[2] - center[2]));
+  for (const s of spheres) radius = Math.max(radius, Math.hypot(s.center[0] - center[0], s.center[1] - center[1], s.center[2] - center[2]) + s.radius);
+  return Math.PI * radius * radius * integral * environment.intensity;
+}
+
+const luminance = (c: Vec3) => 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
 
 const scale = (v: Vec3, s: number): Vec3 => [v[0] * s, v[1] * s, v[2] * s];

@@ -25,6 +25,7 @@ export const SCENE_CHUNK_NAMES = [
   'bsdf/dielectric.glsl',
   'bsdf/bsdf.glsl',
   'lights/sphere_emitter.glsl',
+  'lights/environment_map.glsl',
   'lights/lights.glsl',
   'lights/caustic_guide.glsl',
 ];
@@ -52,5 +53,9 @@ export function sceneDefines(sampler: SamplerKind = 'kronecker', russianRoulette
 
 /** The feature switches of one program variant. */
 export function featureDefines(features: SceneFeatures): Record<string, number> {
-  return { CAUSTIC_GUIDES: features.guides, HAS_DIELECTRIC: features.dielectric ? 1 : 0 };
+  return {
+    CAUSTIC_GUIDES: features.guides,
+    HAS_DIELECTRIC: features.dielectric ? 1 : 0,
+    HAS_ENV_MAP: features.environmentMap ? 1 : 0,
+  };
 }

@@ -24,9 +24,9 @@ bool scatters(Hit hit, Material material) { return hit.kind != HIT_NONE && bsdfS
 // sampling at the previous vertex (unless that vertex scattered through a
 // Dirac delta).
 vec3 emitted(Hit hit, Material material, vec3 direction, vec3 previousPosition, bool previousDelta, float previousPdf) {
-  float weight = previousDelta ? 1.0 : powerHeuristic(previousPdf, lightPdf(previousPosition, hit));
-  vec3 surface = dot(direction, hit.normal) < 0.0 ? material.emission * weight : vec3(0.0);
-  return hit.kind == HIT_NONE ? environmentRadiance() : surface;
+  float weight = previousDelta ? 1.0 : powerHeuristic(previousPdf, lightPdf(previousPosition, direction, hit));
+  vec3 surface = dot(direction, hit.normal) < 0.0 ? material.emission : vec3(0.0);
+  return (hit.kind == HIT_NONE ? escapedRadiance(direction) : surface) * weight;
 }
 
 // Next-event estimation at a surface vertex: f * Le * |cos| / pdf of one

@@ -8,6 +8,7 @@ import { afterAll, beforeAll, expect } from 'vitest';
 import { openRenderSession, type RenderSession } from '../../src/node/session';
 import { parseSceneText } from '../../src/scene/schema';
 import type { Scene } from '../../src/scene/types';
+import { assetReferences } from '../../src/scene/assets';
 import type { LinearImage } from '../../src/node/imageMetrics';
 import { decodePfm } from '../../src/image/pfm';
 
@@ -34,6 +35,13 @@ export function loadFixtureScene(name: string): Scene {
   return parseSceneText(readFileSync(new URL(`scenes/${name}.json`, FIXTURES), 'utf8'));
 }
 
+/** The bytes of the files a fixture scene names, read relative to test/fixtures/scenes/ as the format says. */
+export function fixtureFiles(scene: Scene): Record<string, Uint8Array> {
+  return Object.fromEntries(
+    assetReferences(scene).map((ref) => [ref.file, new Uint8Array(readFileSync(new URL(ref.file, new URL('scenes/', FIXTURES))))]),
+  );
+}
+
 export function loadReference(name: string): LinearImage {
   const pfm = decodePfm(readFileSync(new URL(`references/${name}.pfm`, FIXTURES)));
   return { width: pfm.width, height: pfm.height, channels: 3, data: pfm.rgb };
@@ -47,7 +55,7 @@ export async function renderLinear(
   seed: number,
   size: { width: number; height: number } = scene.image,
 ): Promise<LinearImage> {
-  await session.load(scene, { ...size, seed });
+  await session.load(scene, { ...size, seed }, fixtureFiles(scene));
   const count = await session.render(spp);
   expect(count).toBe(spp);
   const data = await session.readLinear();

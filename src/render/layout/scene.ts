@@ -12,7 +12,7 @@ import { defineRecord, recordDefines, recordGlsl, type RecordLayout } from './re
 /** Material type tags (Material.type in GLSL). */
 export const MATERIAL_TYPES = { standard: 0, dielectric: 1, emitterOnly: 2 } as const;
 /** Emitter kinds (Emitter.kind in GLSL). */
-export const EMITTER_KINDS = { sphere: 0 } as const;
+export const EMITTER_KINDS = { sphere: 0, environment: 1 } as const;
 
 /** A row of the material table: BSDF parameters and emission. */
 export const MATERIAL = defineRecord('Material', [
@@ -63,6 +63,8 @@ export const HEADER = defineRecord('Header', [
   ['groundHeight', 'float'],
   ['groundMaterial', 'int'],
   ['environment', 'vec3'],
+  /** Probability that light sampling picks the environment map (0: none). */
+  ['environmentPdf', 'float'],
 ]);
 
 /** caustic_guide.glsl holds exactly two named cones: change both together. */
@@ -74,7 +76,7 @@ export const GUIDE_VEC4S = Object.keys(GUIDE_FIELDS).length;
 /** Lights become spheres; each sphere, light, mesh and the ground has its own material. */
 export const MAX_SCENE_SPHERES = MAX_SPHERES + MAX_LIGHTS;
 export const MAX_MATERIALS = MAX_SCENE_SPHERES + MAX_MESHES + 1;
-export const MAX_EMITTERS = MAX_SCENE_SPHERES;
+export const MAX_EMITTERS = MAX_SCENE_SPHERES + 1;
 
 /** First texel of each table in the data texture. */
 export const SECTIONS = {

@@ -3,13 +3,16 @@ import { type CameraFrame, cameraFrame, inverseViewProjection } from '../../scen
 import type { Scene } from '../../scene/types';
 import { Program } from '../gl/program';
 import type { PingPong } from '../gl/targets';
+import { missingAssets, type SceneAssets } from '../../scene/assets';
+import { SceneError } from '../../scene/schema';
 import { BLOCK_VEC4S, DATA_TEXELS } from '../layout/scene';
+import { AssetTextures, environmentDistribution } from './assetTextures';
 import { packScene, type SceneFeatures } from '../packScene';
 import type { SamplerKind } from '../sampling';
 import { featureDefines, sceneDefines } from '../shaderChunks';
 import { TRACE_CHUNKS, VERTEX_CHUNKS } from '../shaderSources';
 
-const featureKey = (f: SceneFeatures) => `${f.guides}/${f.dielectric ? 1 : 0}`;
+const featureKey = (f: SceneFeatures) => `${f.guides}/${f.dielectric ? 1 : 0}/${f.environmentMap ? 1 : 0}`;
 
 const UNIFORM_TYPES: Record<string, string> = {
   uInverseViewProjection: 'mat4',
@@ -53,6 +56,8 @@ export class TracePass {
   private readonly sceneTexture: WebGLTexture;
 
   private readonly defines: Record<string, string | number>;
+  /** The scene's decoded files on the GPU (environment map). */
+  private readonly assets: AssetTextures;
 
   constructor(
     private readonly gl: WebGL2RenderingContext,
@@ -60,8 +65,9 @@ export class TracePass {
     russianRoulette = false,
   ) {
     this.defines = sceneDefines(sampler, russianRoulette);
-    this.program = this.programFor({ guides: 0, dielectric: false });
-    this.programFor({ guides: 1, dielectric: false });
+    this.program = this.programFor({ guides: 0, dielectric: false, environmentMap: false });
+    this.programFor({ guides: 1, dielectric: false, environmentMap: false });
+    this.assets = new AssetTextures(gl);
     this.sceneBuffer = gl.createBuffer()!;
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
     gl.bufferData(gl.UNIFORM_BUFFER, BLOCK_VEC4S * 16, gl.DYNAMIC_DRAW);
@@ -85,10 +91,18 @@ export class TracePass {
     return program;
   }
 
-  /** Uploads the scene: geometry and materials to the uniform block, camera to uniforms. */
-  setScene(scene: Scene, width: number, height: number): void {
+  /**
+   * Uploads the scene: tables to the data texture, constants to the uniform
+   * block, camera to uniforms; the files it names from `assets` (uploaded
+   * only when they change). Throws SceneError when a file is not in `assets`.
+   */
+  setScene(scene: Scene, assets: SceneAssets, width: number, height: number): void {
     const gl = this.gl;
-    const packed = packScene(scene);
+    const missing = missingAssets(scene, assets);
+    if (missing.length > 0) throw new SceneError(missing);
+    const map = scene.environment && 'map' in scene.environment ? assets.maps.get(scene.environment.map)! : null;
+    this.assets.setEnvironmentMap(map);
+    const packed = packScene(scene, { environmentIntegral: map ? environmentDistribution(map).integral : undefined });
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
     gl.bufferSubData(gl.UNIFORM_BUFFER, 0, packed.block);
     gl.bindBuffer(gl.UNIFORM_BUFFER, null);
@@ -97,7 +111,10 @@ export class TracePass {
     gl.bindTexture(gl.TEXTURE_2D, null);
     this.program = this.programFor(packed.features);
     const frame = cameraFrame(scene.camera);
-    for (const program of this.programs.values()) this.setCameraUniforms(program, scene, frame, width, height);
+    for (const program of this.programs.values()) {
+      this.setCameraUniforms(program, scene, frame, width, height);
+      this.assets.setUniforms(program, scene);
+    }
   }
 
   private setCameraUniforms(program: Program, scene: Scene, frame: CameraFrame, width: number, height: number): void {
@@ -127,6 +144,7 @@ export class TracePass {
       UNIFORM_TYPES,
     );
     gl.bindBufferBase(gl.UNIFORM_BUFFER, SCENE_BLOCK_BINDING, this.sceneBuffer);
+    this.assets.bind();
     gl.activeTexture(gl.TEXTURE0 + SCENE_TEXTURE_UNIT);
     gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
     gl.activeTexture(gl.TEXTURE0);
@@ -140,6 +158,7 @@ export class TracePass {
 
   dispose(): void {
     for (const program of this.programs.values()) program.dispose();
+    this.assets.dispose();
     this.gl.deleteBuffer(this.sceneBuffer);
     this.gl.deleteTexture(this.sceneTexture);
   }

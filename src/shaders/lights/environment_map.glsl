@@ -23,6 +23,11 @@
 // luminance times its solid angle, then a uniform point of the cell in
 // (u, v): the solid-angle pdf is pdfUv / (2 pi^2 sin theta). Constant time:
 // one texel fetch per dimension (alias tables), none of them in a loop.
+//
+// Compiled in only for scenes with a map (HAS_ENV_MAP): the trace program
+// variants of src/render/passes/trace.ts.
+
+#if HAS_ENV_MAP
 
 uniform highp sampler2D uEnvironmentMap;
 uniform highp sampler2D uEnvironmentMarginal;
@@ -118,3 +123,5 @@ float environmentPdf(vec3 worldDir) {
   // Rotation about +y keeps y: sin(theta) straight from the direction.
   return environmentSolidAnglePdf(pdfUv, sqrt(max(0.0, 1.0 - worldDir.y * worldDir.y)));
 }
+
+#endif

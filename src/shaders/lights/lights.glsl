@@ -1,7 +1,7 @@
-// The light interface: every emitter (the `lights`, emissive spheres) sits
-// in one table and is picked in proportion to its power (an alias table,
-// src/render/aliasTable.ts). The integrator calls sampleLight and lightPdf
-// and never knows which kind of emitter it holds.
+// The light interface: every emitter (the `lights`, emissive spheres, the
+// environment map) sits in one table and is picked in proportion to its
+// power (an alias table, src/render/aliasTable.ts). The integrator calls
+// sampleLight and lightPdf and never knows which kind of emitter it holds.
 
 struct LightSample {
   vec3 direction;   // world, unit, from x towards the emitter
@@ -22,12 +22,35 @@ LightSample sampleLight(vec3 x, vec3 u) {
   float pdf;
   s.direction = sampleSphereEmitter(x, vec4(e.center, e.radius), u.xy, pdf, s.distance);
   s.radiance = e.radiance;
-  s.pdf = count > 0 ? e.pdf * pdf : 0.0;
   s.skipSphere = e.primitive;
+#if HAS_ENV_MAP
+  if (e.kind == EMITTER_ENVIRONMENT) {
+    s.direction = sampleEnvironment(u.xy, pdf);
+    s.distance = INFINITY;
+    s.radiance = environmentRadiance(s.direction);
+    s.skipSphere = -1;
+  }
+#endif
+  s.pdf = count > 0 ? e.pdf * pdf : 0.0;
   return s;
 }
 
-// Density of sampleLight drawing, from x, the direction towards `hit`.
-float lightPdf(vec3 x, Hit hit) {
-  return hit.kind == HIT_SPHERE ? hit.emitterPdf * sphereEmitterPdf(x, hit.geometry) : 0.0;
+// Density of sampleLight drawing, from x, the direction towards `hit`
+// (`direction`, unit, from x).
+float lightPdf(vec3 x, vec3 direction, Hit hit) {
+  float pdf = hit.kind == HIT_SPHERE ? hit.emitterPdf * sphereEmitterPdf(x, hit.geometry) : 0.0;
+#if HAS_ENV_MAP
+  pdf = hit.kind == HIT_NONE ? environmentEmitterPdf() * environmentPdf(direction) : pdf;
+#endif
+  return pdf;
+}
+
+// Radiance arriving along `direction` from an escaped ray: the map, or the
+// constant sky (which light sampling never picks: weighted 1 by emitted()).
+vec3 escapedRadiance(vec3 direction) {
+#if HAS_ENV_MAP
+  return environmentRadiance(direction);
+#else
+  return constantEnvironment();
+#endif
 }

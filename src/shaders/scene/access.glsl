@@ -5,7 +5,8 @@ int emitterCount() { return readHeader(0).emitterCount; }
 bool groundEnabled() { return readHeader(0).groundEnabled != 0; }
 float groundHeight() { return readHeader(0).groundHeight; }
 int groundMaterial() { return readHeader(0).groundMaterial; }
-vec3 environmentRadiance() { return readHeader(0).environment; }
+vec3 constantEnvironment() { return readHeader(0).environment; }
+float environmentEmitterPdf() { return readHeader(0).environmentPdf; }
 
 int sphereTexel(int i, int field) { return SPHERES_FIRST + i * SPHERE_RECORD_TEXELS + field; }
 vec4 sphereGeometry(int i) { return sceneData(sphereTexel(i, SPHERE_RECORD_CENTER_TEXEL)); }

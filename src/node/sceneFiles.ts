@@ -1,0 +1,32 @@
+/**
+ * The files a scene file names (environment maps, meshes), read from disk
+ * relative to the scene file's folder, as the format says.
+ */
+import { readFile } from 'node:fs/promises';
+import path from 'node:path';
+import { assetReferences, loadSceneAssets, type SceneAssets } from '../scene/assets';
+import type { Scene } from '../scene/types';
+
+export interface SceneFiles {
+  /** Bytes by name as written in the scene (what RenderSession.load takes). */
+  files: Record<string, Uint8Array>;
+  /** The same files decoded: reading them here finds every bad file before a browser starts. */
+  assets: SceneAssets;
+}
+
+/** Reads and decodes every file `scene` names; throws SceneError naming each unusable one (`meshes[0].file: ...`). */
+export async function readSceneFiles(scene: Scene, sceneFile: string): Promise<SceneFiles> {
+  const folder = path.dirname(path.resolve(sceneFile));
+  const files: Record<string, Uint8Array> = {};
+  const assets = await loadSceneAssets(scene, async (name) => {
+    const bytes = new Uint8Array(await readFile(path.resolve(folder, name)));
+    files[name] = bytes;
+    return bytes;
+  });
+  return { files, assets };
+}
+
+/** Whether the scene names any file. */
+export function namesFiles(scene: Scene): boolean {
+  return assetReferences(scene).length > 0;
+}
