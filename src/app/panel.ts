@@ -89,6 +89,7 @@ export class Panel {
     folder.open();
   }
 
+  /** The ground's material: standard only, no emission (the format forbids glass and emission on the ground). */
   private materialControls(folder: GUI, material: () => Material): void {
     const app = this.app;
     this.tracked(folder.addColor({
