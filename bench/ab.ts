@@ -9,7 +9,7 @@ import { relativeMse, type LinearImage } from '../src/node/imageMetrics';
 import { openRenderSession, type LoadOptions } from '../src/node/session';
 import type { SamplerKind } from '../src/render/sampling';
 import { parseSceneText } from '../src/scene/schema';
-import { decodePfm } from '../src/cli/pfm';
+import { decodePfm } from '../src/image/pfm';
 import { projectRoot, renderFor } from './common';
 import { downsample } from './run';
 

@@ -15,10 +15,10 @@ import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { relativeMse, type LinearImage } from '../src/node/imageMetrics';
 import { openRenderSession, type LoadOptions } from '../src/node/session';
-import { TRACE_CHUNKS, featureDefines, sceneDefines } from '../src/render/passes/trace';
+import { assembleChunks, featureDefines, sceneDefines, TRACE_CHUNK_NAMES } from '../src/render/shaderChunks';
 import { buildShader } from '../src/render/gl/shaderSource';
 import { parseSceneText } from '../src/scene/schema';
-import { decodePfm } from '../src/cli/pfm';
+import { decodePfm } from '../src/image/pfm';
 import { projectRoot, renderFor } from './common';
 import { downsample } from './run';
 
@@ -79,9 +79,7 @@ function variantSource(spec: string, root: URL): string {
   const [dir, ...patches] = spec.split('+');
   const base = new URL(dir.endsWith('/') ? dir : `${dir}/`, root);
   // The generated chunks come from this build; every other chunk from the variant's directory.
-  const chunks = TRACE_CHUNKS.map((chunk) =>
-    chunk.name.startsWith('generated/') ? chunk : { name: chunk.name, source: readFileSync(new URL(chunk.name, base), 'utf8') },
-  );
+  const chunks = assembleChunks(TRACE_CHUNK_NAMES, (name) => readFileSync(new URL(name, base), 'utf8'));
   // One caustic guide, no glass: the seed scene's program.
   const defines = { ...sceneDefines(), ...featureDefines({ guides: 1, dielectric: false }) };
   let text = buildShader(chunks, defines).text;

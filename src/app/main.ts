@@ -14,7 +14,7 @@ import { App } from './App';
 import { downloadBlob, readSceneFile, rgba8ToPngBlob, sceneFromHash, shareHash } from './files';
 import { attachInput, attachKeys } from './input';
 import { Panel } from './panel';
-import { encodePfm } from './pfm';
+import { encodePfm } from '../image/pfm';
 import type { RenderStats } from './renderLoop';
 
 const $ = <T extends HTMLElement = HTMLElement>(id: string) => document.getElementById(id) as T;

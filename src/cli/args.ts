@@ -41,7 +41,7 @@ export interface RenderArgs {
   width?: number;
   height?: number;
   exposure: number;
-  tonemap: string;
+  toneMap: string;
 }
 
 const INTEGER = /^\+?\d+$/;
@@ -111,7 +111,7 @@ export function parseRenderArgs(raw: RawRenderOptions, tonemaps: readonly string
     problems.push(`--tonemap: must be one of ${tonemaps.join(', ')} ${got(tonemap)}`);
   }
   if (problems.length > 0) throw usageError(problems);
-  return { budget: budget!, seed: seed!, width, height, exposure: exposure!, tonemap };
+  return { budget: budget!, seed: seed!, width, height, exposure: exposure!, toneMap: tonemap };
 }
 
 function parseTime(raw: string): number {

@@ -11,7 +11,7 @@ import type { Scene } from '../scene/types';
 import { parseRenderArgs, resolveSize, type Budget, type RawRenderOptions, type RenderArgs } from './args';
 import { CliError, EXIT_INTERRUPTED, failure, firstLine, oneLine, usageError } from './errors';
 import { checkWritable, defaultPngPath, writeOutputs } from './output';
-import { encodePfm } from './pfm';
+import { encodePfm } from '../image/pfm';
 import { encodePng } from './png';
 import { createProgress, formatRate, type Progress, type ProgressStream } from './progress';
 import { loadSceneFile } from './validate';
@@ -65,7 +65,7 @@ export async function renderCommand(sceneFile: string, raw: RawRenderOptions, ct
       renderImages(session, scene, args, { width, height }, progress, now, hdrPath !== undefined),
     );
     progress.stop();
-    const files = [{ path: pngPath, data: encodePng(width, height, result.displayed) }];
+    const files: { path: string; data: Uint8Array }[] = [{ path: pngPath, data: encodePng(width, height, result.displayed) }];
     if (hdrPath !== undefined && result.linear) files.push({ path: hdrPath, data: encodePfm(width, height, result.linear) });
     await writeOutputs(files);
     const outcome = { spp: result.spp, seconds: result.seconds, width, height, files: files.map((f) => f.path) };
@@ -160,7 +160,7 @@ async function renderImages(
   const { spp, seconds } = await renderBudget(session, args.budget, progress, now);
   progress.stop();
   const pixels = size.width * size.height;
-  const displayed = await session.readDisplayed({ exposure: args.exposure, tonemap: args.tonemap });
+  const displayed = await session.readDisplayed({ exposure: args.exposure, toneMap: args.toneMap });
   checkLength('displayed image', displayed.length, pixels * 4);
   let linear: Float32Array | undefined;
   if (wantLinear) {

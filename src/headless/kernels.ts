@@ -8,7 +8,8 @@ import kernelFrag from '../shaders/test/kernels.frag?raw';
 import { Program } from '../render/gl/program';
 import { FloatTarget } from '../render/gl/targets';
 import { BLOCK_VEC4S } from '../render/layout/scene';
-import { SCENE_CHUNKS, VERTEX_CHUNKS, featureDefines, sceneDefines } from '../render/passes/trace';
+import { featureDefines, sceneDefines } from '../render/shaderChunks';
+import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/shaderSources';
 import { createContext } from '../render/gl/context';
 
 export const KERNELS = ['sampleCone', 'sampleMaterial', 'pdfMaterial'] as const;

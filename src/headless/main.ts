@@ -8,9 +8,12 @@ import type { DisplayOptions } from '../render/passes/display';
 import type { SamplerKind } from '../render/sampling';
 import type { Scene } from '../scene/types';
 import { runKernel, type KernelRequest } from './kernels';
+// Registers window.pathtraceEnvironmentKernels (environment-map test kernels).
+import './environmentKernels';
 import { createContext } from '../render/gl/context';
 import { Program, ShaderCompileError } from '../render/gl/program';
-import { SCENE_CHUNKS, VERTEX_CHUNKS, sceneDefines } from '../render/passes/trace';
+import { sceneDefines } from '../render/shaderChunks';
+import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/shaderSources';
 
 export interface LoadOptions {
   width: number;

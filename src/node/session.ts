@@ -73,7 +73,7 @@ export interface RenderSession {
   /** Mean linear radiance, RGBA float32, rows top to bottom, width*height*4. */
   readLinear(): Promise<Float32Array>;
   /** The displayed image exactly as the page shows it: RGBA8 sRGB, rows top to bottom. */
-  readDisplayed(options: { exposure: number; tonemap: string }): Promise<Uint8Array>;
+  readDisplayed(options: { exposure: number; toneMap: string }): Promise<Uint8Array>;
   close(): Promise<void>;
   /** The page, for tests that need more than the API above. */
   readonly page: Page;
@@ -162,7 +162,7 @@ function createSession(page: Page, browser: Browser, server: StaticServer, pageE
       return toFloat32(await call('readLinear'));
     },
     async readDisplayed(options) {
-      const toneMap = options.tonemap as DisplayOptions['toneMap'];
+      const toneMap = options.toneMap as DisplayOptions['toneMap'];
       return new Uint8Array(Buffer.from(await call('readDisplayed', { exposure: options.exposure, toneMap }), 'base64'));
     },
     compileLog: (name, source) => call('compileLog', name, source),

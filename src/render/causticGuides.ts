@@ -15,7 +15,7 @@ export const GUIDE_MARGIN = 2.0;
 /** A sphere is a guiding mirror when its specular lobe is a delta and carries at least this weight. */
 export const GUIDE_MIN_SPECULAR = 0.5;
 /** GGX lobes with alpha = r^2 below this are treated as ideal (delta) lobes, in every BSDF. */
-export const SMOOTH_ALPHA = 1e-3;
+export const DELTA_ALPHA = 1e-3;
 
 export interface GuideSphere {
   center: Vec3;
@@ -35,7 +35,7 @@ export function selectCausticGuides(spheres: readonly GuideSphere[]): [number, n
     const material = mirror.material;
     if (material === 'emitterOnly' || material.type !== 'standard') return;
     const r = material.roughness;
-    if (r * r >= SMOOTH_ALPHA || 1 - r < GUIDE_MIN_SPECULAR) return;
+    if (r * r >= DELTA_ALPHA || 1 - r < GUIDE_MIN_SPECULAR) return;
     spheres.forEach((light, l) => {
       const power = Math.max(...light.radiance) * light.radius ** 2;
       if (l !== m && power > 0) pairs.push({ pair: [m, l], score: power * mirror.radius ** 2 * Math.max(...material.color) });

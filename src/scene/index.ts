@@ -10,3 +10,4 @@ export * from './schema';
 export * from './color';
 export * from './serialize';
 export * from './presets';
+export { requiredVersion } from './version';

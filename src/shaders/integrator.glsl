@@ -69,7 +69,7 @@ vec3 traceRadiance(vec3 direction, Hit hit, Material material, vec3 radiance) {
 
     // Light arriving directly from an emitter (next-event estimation).
     vec3 direct = sampleDirectLight(hit, frame, wo, material, uLight.xyz);
-    radiance += throughput * (bsdfHasSmoothLobe(material) ? direct : vec3(0.0));
+    radiance += throughput * (bsdfHasNonDeltaLobe(material) ? direct : vec3(0.0));
 
     // Sample the BSDF (mixed with the caustic guides) for the next direction.
     BsdfSample bs = sampleGuided(material, frame, wo, uBsdf, uLight.w);

@@ -9,7 +9,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { type CliResult, ROOT, runPathtrace } from '../support/cli';
-import { decodePfm } from '../../src/cli/pfm';
+import { decodePfm } from '../../src/image/pfm';
 import { decodePng } from '../../src/cli/png';
 
 const scene = (name: string) => join(ROOT, 'test/fixtures/scenes', `${name}.json`);

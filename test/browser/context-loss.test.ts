@@ -93,7 +93,7 @@ describe('lost WebGL context', () => {
     const fresh = await s.readLinear();
     expect(Math.abs(imageMean(after) / imageMean(fresh) - 1)).toBeLessThan(1e-6);
     // The displayed image works too (the display pass was rebuilt as well).
-    const displayed = await s.readDisplayed({ exposure: 0, tonemap: 'none' });
+    const displayed = await s.readDisplayed({ exposure: 0, toneMap: 'none' });
     expect(displayed.some((v, i) => i % 4 !== 3 && v > 0)).toBe(true);
   });
 

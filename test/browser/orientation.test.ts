@@ -39,7 +39,7 @@ describe('orientation', () => {
   it('puts an object right of and above the centre right and up in the PNG', async () => {
     await session().load(scene, { width: 96, height: 64, seed: 0 });
     await session().render(4);
-    const png = decodePng(encodePng(96, 64, await session().readDisplayed({ exposure: 0, tonemap: 'none' })));
+    const png = decodePng(encodePng(96, 64, await session().readDisplayed({ exposure: 0, toneMap: 'none' })));
     const c = brightCentroid((p) => png.rgba[p * 4] / 255, png.width, png.height);
     expect(c.n).toBeGreaterThan(10);
     expect(c.x).toBeGreaterThan(png.width / 2 + 10);

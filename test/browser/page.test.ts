@@ -6,7 +6,7 @@
  */
 import { readFileSync } from 'node:fs';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { decodePfm } from '../../src/cli/pfm';
+import { decodePfm } from '../../src/image/pfm';
 import { decodePng } from '../../src/cli/png';
 import { projectPoint } from '../../src/scene/picking';
 import { defaultScene } from '../../src/scene/presets';

@@ -9,7 +9,7 @@ import { openRenderSession, type RenderSession } from '../../src/node/session';
 import { parseSceneText } from '../../src/scene/schema';
 import type { Scene } from '../../src/scene/types';
 import type { LinearImage } from '../../src/node/imageMetrics';
-import { decodePfm } from '../../src/cli/pfm';
+import { decodePfm } from '../../src/image/pfm';
 
 export const FIXTURES = new URL('../fixtures/', import.meta.url);
 

@@ -9,7 +9,7 @@ import { join } from 'node:path';
 import { afterEach, beforeEach, describe, expect, it } from 'vitest';
 import { run, type RunOptions } from '../../src/cli/main';
 import { writeOutputs } from '../../src/cli/output';
-import { decodePfm } from '../../src/cli/pfm';
+import { decodePfm } from '../../src/image/pfm';
 import { decodePng } from '../../src/cli/png';
 import { formatDuration, formatRate } from '../../src/cli/progress';
 import { renderBudget, type CliSession, type SessionModule } from '../../src/cli/render';
@@ -45,7 +45,7 @@ function fakeSessionModule(options: FakeOptions = {}) {
     closed: 0,
     loads: [] as { scene: Scene; options: LoadOptions }[],
     renders: [] as number[],
-    displayed: [] as { exposure: number; tonemap: string }[],
+    displayed: [] as { exposure: number; toneMap: string }[],
     linearReads: 0,
   };
   let clock = 0;
@@ -149,7 +149,7 @@ describe('arguments', () => {
   it('accepts negative exposures and reports several bad flags at once', async () => {
     const ok = await cli(['render', fixture('furnace'), '--exposure', '-1.5', '--spp', '1']);
     expect(ok.code).toBe(0);
-    expect(ok.log.displayed).toEqual([{ exposure: -1.5, tonemap: 'none' }]);
+    expect(ok.log.displayed).toEqual([{ exposure: -1.5, toneMap: 'none' }]);
     const bad = await cli(['render', fixture('seed'), '--spp', 'x', '--seed', 'y', '--tonemap', 'z']);
     expect(bad.code).toBe(2);
     expect(bad.stderr.lines).toHaveLength(3);
@@ -264,7 +264,7 @@ describe('render with a fake session', () => {
     expect([png.width, png.height]).toEqual([256, 192]);
     expect(log.loads[0].options).toEqual({ width: 256, height: 192, seed: 0 });
     expect(log.renders.reduce((a, b) => a + b, 0)).toBe(8);
-    expect(log.displayed).toEqual([{ exposure: 0, tonemap: 'none' }]);
+    expect(log.displayed).toEqual([{ exposure: 0, toneMap: 'none' }]);
     expect(log.linearReads).toBe(0);
     expect(log.closed).toBe(1);
     // The only stderr output without a terminal is the summary line.
@@ -280,7 +280,7 @@ describe('render with a fake session', () => {
     expect(code).toBe(0);
     expect(log.renders.reduce((a, b) => a + b, 0)).toBe(256);
     expect(log.loads[0].options).toEqual({ width: 32, height: 20, seed: 7 });
-    expect(log.displayed).toEqual([{ exposure: 1, tonemap: 'aces' }]);
+    expect(log.displayed).toEqual([{ exposure: 1, toneMap: 'aces' }]);
     const png = decodePng(readFileSync(out));
     expect([png.width, png.height]).toEqual([32, 20]);
     expect(png.rgba[0]).toBe(7);

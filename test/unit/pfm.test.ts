@@ -1,6 +1,6 @@
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
-import { decodePfm, encodePfm } from '../../src/cli/pfm';
+import { decodePfm, encodePfm } from '../../src/image/pfm';
 
 /** A small RGBA float image whose every value says where it came from. */
 function ramp(width: number, height: number): Float32Array {
@@ -16,13 +16,13 @@ function ramp(width: number, height: number): Float32Array {
 
 describe('encodePfm', () => {
   it('writes the colour PFM header with a little-endian scale', () => {
-    const pfm = encodePfm(3, 2, ramp(3, 2));
+    const pfm = Buffer.from(encodePfm(3, 2, ramp(3, 2)));
     expect(pfm.subarray(0, 12).toString('latin1')).toBe('PF\n3 2\n-1.0\n');
     expect(pfm.length).toBe(12 + 3 * 2 * 3 * 4);
   });
 
   it('stores rows bottom to top and drops alpha', () => {
-    const pfm = encodePfm(3, 2, ramp(3, 2));
+    const pfm = Buffer.from(encodePfm(3, 2, ramp(3, 2)));
     const body = pfm.subarray(12);
     // The first stored pixel is the image's bottom-left (x 0, y 1).
     expect([body.readFloatLE(0), body.readFloatLE(4), body.readFloatLE(8)]).toEqual([0.25, 1.5, 1.125]);

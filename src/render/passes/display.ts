@@ -3,7 +3,7 @@ import displayFrag from '../../shaders/display.frag?raw';
 import { Program } from '../gl/program';
 import type { FloatTarget } from '../gl/targets';
 import { TONEMAPS, toneMapDefines, type ToneMap } from '../toneMaps';
-import { VERTEX_CHUNKS } from './trace';
+import { VERTEX_CHUNKS } from '../shaderSources';
 
 export interface DisplayOptions {
   /** Exposure in stops: displayed radiance = mean * 2^exposure. Default 0. */

@@ -1,75 +1,15 @@
 /** The path-tracing pass: adds samples to the running sums in a ping-pong pair. */
-import fullscreenVert from '../../shaders/fullscreen.vert?raw';
-import mathGlsl from '../../shaders/common/math.glsl?raw';
-import rngGlsl from '../../shaders/common/rng.glsl?raw';
-import samplingGlsl from '../../shaders/common/sampling.glsl?raw';
-import layoutGlsl from '../../shaders/scene/layout.glsl?raw';
-import accessGlsl from '../../shaders/scene/access.glsl?raw';
-import intersectGlsl from '../../shaders/scene/intersect.glsl?raw';
-import ggxGlsl from '../../shaders/bsdf/ggx.glsl?raw';
-import standardGlsl from '../../shaders/bsdf/standard.glsl?raw';
-import dielectricGlsl from '../../shaders/bsdf/dielectric.glsl?raw';
-import bsdfGlsl from '../../shaders/bsdf/bsdf.glsl?raw';
-import causticGuideGlsl from '../../shaders/lights/caustic_guide.glsl?raw';
-import sphereEmitterGlsl from '../../shaders/lights/sphere_emitter.glsl?raw';
-import lightsGlsl from '../../shaders/lights/lights.glsl?raw';
-import cameraGlsl from '../../shaders/camera.glsl?raw';
-import integratorGlsl from '../../shaders/integrator.glsl?raw';
-import traceFrag from '../../shaders/trace.frag?raw';
 import { type CameraFrame, cameraFrame, inverseViewProjection } from '../../scene/camera';
 import type { Scene } from '../../scene/types';
 import { Program } from '../gl/program';
-import type { ShaderChunk } from '../gl/shaderSource';
 import type { PingPong } from '../gl/targets';
-import { GUIDE_MARGIN, GUIDE_PROBABILITY, SMOOTH_ALPHA } from '../causticGuides';
-import { BLOCK_VEC4S, DATA_TEXELS, sceneLayoutDefines, sceneLayoutGlsl } from '../layout/scene';
+import { BLOCK_VEC4S, DATA_TEXELS } from '../layout/scene';
 import { packScene, type SceneFeatures } from '../packScene';
-import { samplingDefines, type SamplerKind } from '../sampling';
-
-export const VERTEX_CHUNKS: ShaderChunk[] = [{ name: 'fullscreen.vert', source: fullscreenVert }];
-
-/** The chunks every kernel that touches the scene needs, in dependency order. */
-export const SCENE_CHUNKS: ShaderChunk[] = [
-  { name: 'common/math.glsl', source: mathGlsl },
-  { name: 'common/rng.glsl', source: rngGlsl },
-  { name: 'common/sampling.glsl', source: samplingGlsl },
-  { name: 'scene/layout.glsl', source: layoutGlsl },
-  { name: 'generated/records.glsl', source: sceneLayoutGlsl() },
-  { name: 'scene/access.glsl', source: accessGlsl },
-  { name: 'scene/intersect.glsl', source: intersectGlsl },
-  { name: 'bsdf/ggx.glsl', source: ggxGlsl },
-  { name: 'bsdf/standard.glsl', source: standardGlsl },
-  { name: 'bsdf/dielectric.glsl', source: dielectricGlsl },
-  { name: 'bsdf/bsdf.glsl', source: bsdfGlsl },
-  { name: 'lights/sphere_emitter.glsl', source: sphereEmitterGlsl },
-  { name: 'lights/lights.glsl', source: lightsGlsl },
-  { name: 'lights/caustic_guide.glsl', source: causticGuideGlsl },
-];
-
-/** Defines of the scene chunks, before the per-variant feature switches. */
-export function sceneDefines(sampler: SamplerKind = 'kronecker', russianRoulette = false): Record<string, string | number> {
-  return {
-    ...sceneLayoutDefines(),
-    ...samplingDefines(sampler, russianRoulette),
-    GUIDE_PROBABILITY: GUIDE_PROBABILITY.toFixed(6),
-    GUIDE_MARGIN: GUIDE_MARGIN.toFixed(6),
-    SMOOTH_ALPHA: SMOOTH_ALPHA.toExponential(),
-  };
-}
-
-/** The feature switches of one program variant. */
-export function featureDefines(features: SceneFeatures): Record<string, number> {
-  return { CAUSTIC_GUIDES: features.guides, HAS_DIELECTRIC: features.dielectric ? 1 : 0 };
-}
+import type { SamplerKind } from '../sampling';
+import { featureDefines, sceneDefines } from '../shaderChunks';
+import { TRACE_CHUNKS, VERTEX_CHUNKS } from '../shaderSources';
 
 const featureKey = (f: SceneFeatures) => `${f.guides}/${f.dielectric ? 1 : 0}`;
-
-export const TRACE_CHUNKS: ShaderChunk[] = [
-  ...SCENE_CHUNKS,
-  { name: 'camera.glsl', source: cameraGlsl },
-  { name: 'integrator.glsl', source: integratorGlsl },
-  { name: 'trace.frag', source: traceFrag },
-];
 
 const UNIFORM_TYPES: Record<string, string> = {
   uInverseViewProjection: 'mat4',

@@ -56,11 +56,11 @@ BsdfSample bsdfSample(Material m, vec3 wo, vec3 u) {
 }
 
 // Whether light sampling can contribute: some lobe is not a Dirac delta.
-bool bsdfHasSmoothLobe(Material m) {
+bool bsdfHasNonDeltaLobe(Material m) {
 #if HAS_DIELECTRIC
-  if (m.type == MATERIAL_DIELECTRIC) return dielectricHasSmoothLobe(m);
+  if (m.type == MATERIAL_DIELECTRIC) return dielectricHasNonDeltaLobe(m);
 #endif
-  return m.type == MATERIAL_STANDARD && standardHasSmoothLobe(m);
+  return m.type == MATERIAL_STANDARD && standardHasNonDeltaLobe(m);
 }
 
 // Whether paths continue from this material (emitter-only surfaces, the

@@ -27,7 +27,7 @@ float fresnelDielectric(float cosThetaI, float eta, out float cosThetaT, out flo
 }
 
 float dielectricAlpha(Material m) { return m.roughness * m.roughness; }
-bool dielectricIsDelta(Material m) { return dielectricAlpha(m) < SMOOTH_ALPHA; }
+bool dielectricIsDelta(Material m) { return dielectricAlpha(m) < DELTA_ALPHA; }
 
 // Smith G1 on either side of the surface.
 float ggxG1Either(vec3 v, float alpha) { return ggxG1(vec3(v.xy, abs(v.z)), alpha); }
@@ -85,4 +85,4 @@ vec3 dielectricSampleDirection(Material m, vec3 wo, vec3 u, vec2 circle, out boo
   return reflects ? 2.0 * woh * h - wo : refracted;
 }
 
-bool dielectricHasSmoothLobe(Material m) { return !dielectricIsDelta(m); }
+bool dielectricHasNonDeltaLobe(Material m) { return !dielectricIsDelta(m); }

@@ -5,12 +5,12 @@
 // reflects nothing. The lobes are chosen with probabilities (1 - r) and r;
 // the pdf of a direction is the mixture of both lobes' pdfs.
 //
-// Below SMOOTH_ALPHA the GGX lobe is treated as an ideal mirror (as pbrt-v4
+// Below DELTA_ALPHA the GGX lobe is treated as an ideal mirror (as pbrt-v4
 // does): its peak is then far narrower than a pixel's footprint, and the
 // mirror is exact instead of a badly conditioned huge-D/tiny-pdf pair.
 
 float standardAlpha(Material m) { return m.roughness * m.roughness; }
-bool standardIsDelta(Material m) { return standardAlpha(m) < SMOOTH_ALPHA; }
+bool standardIsDelta(Material m) { return standardAlpha(m) < DELTA_ALPHA; }
 
 // f(wo, wi) * cos(wi) of the non-delta lobes; `pdf` receives their mixture
 // density of sampling wi.
@@ -50,4 +50,4 @@ vec3 standardSampleDirection(Material m, vec3 wo, vec3 u, vec2 circle, out bool 
 }
 
 // Light sampling can contribute where some lobe is not a Dirac delta.
-bool standardHasSmoothLobe(Material m) { return m.roughness > 0.0; }
+bool standardHasNonDeltaLobe(Material m) { return m.roughness > 0.0; }

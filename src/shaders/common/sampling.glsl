@@ -16,14 +16,6 @@ vec2 sampleUniformDisk(vec2 u) {
   return sampleUniformDisk(u, radius);
 }
 
-// Cosine-weighted hemisphere around +z; pdf = cos(theta) / pi. With u < 1,
-// |radius| <= 1 - 2^-23, so z > 4e-4: never a grazing, zero-pdf direction.
-vec3 sampleCosineHemisphere(vec2 u) {
-  float radius;
-  vec2 d = sampleUniformDisk(u, radius);
-  return vec3(d, sqrt(max(0.0, 1.0 - radius * radius)));
-}
-
 // The point at angle 2 pi u on the unit circle: (cos, sin).
 vec2 unitCircle(float u) {
   float phi = 2.0 * PI * u;

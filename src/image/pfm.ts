@@ -1,5 +1,6 @@
 /**
- * Portable Float Map (PFM) encoding and decoding.
+ * Portable Float Map (PFM) encoding and decoding, for the page, the CLI and
+ * the tests alike (plain typed arrays, no Node Buffer).
  *
  * PFM stores rows bottom to top; a negative scale means little-endian floats.
  * Everywhere else in this project images are rows top to bottom, so both
@@ -20,24 +21,24 @@ export interface PfmImage {
  * colour PFM: `PF\n<w> <h>\n-1.0\n`, then little-endian float32 RGB rows
  * from the bottom row up.
  */
-export function encodePfm(width: number, height: number, rgba: Float32Array): Buffer {
+export function encodePfm(width: number, height: number, rgba: Float32Array): Uint8Array<ArrayBuffer> {
   checkSize(width, height);
   if (rgba.length !== width * height * 4) {
     throw new RangeError(`encodePfm: expected ${width * height * 4} RGBA floats, got ${rgba.length}`);
   }
-  const header = Buffer.from(`PF\n${width} ${height}\n-1.0\n`, 'latin1');
-  const body = Buffer.alloc(width * height * 12);
+  const header = new TextEncoder().encode(`PF\n${width} ${height}\n-1.0\n`);
+  const bytes = new Uint8Array(header.length + width * height * 12);
+  bytes.set(header, 0);
+  const body = new DataView(bytes.buffer, header.length);
   for (let fileRow = 0; fileRow < height; fileRow++) {
     const imageRow = height - 1 - fileRow;
     for (let x = 0; x < width; x++) {
       const src = (imageRow * width + x) * 4;
       const dst = (fileRow * width + x) * 12;
-      body.writeFloatLE(rgba[src], dst);
-      body.writeFloatLE(rgba[src + 1], dst + 4);
-      body.writeFloatLE(rgba[src + 2], dst + 8);
+      for (let c = 0; c < 3; c++) body.setFloat32(dst + c * 4, rgba[src + c], true);
     }
   }
-  return Buffer.concat([header, body]);
+  return bytes;
 }
 
 /**
@@ -45,7 +46,8 @@ export function encodePfm(width: number, height: number, rgba: Float32Array): Bu
  * float32 rows top to bottom. Greyscale values are copied to all three channels.
  */
 export function decodePfm(data: Uint8Array): PfmImage {
-  const bytes = Buffer.from(data.buffer, data.byteOffset, data.byteLength);
+  const bytes = data;
+  const view = new DataView(data.buffer, data.byteOffset, data.byteLength);
   const { tokens, bodyOffset } = readHeader(bytes);
   const [magic, w, h, s] = tokens;
   if (magic !== 'PF' && magic !== 'Pf') throw new Error(`not a PFM file (magic ${JSON.stringify(magic)})`);
@@ -67,7 +69,7 @@ export function decodePfm(data: Uint8Array): PfmImage {
       const dst = (imageRow * width + x) * 3;
       for (let c = 0; c < 3; c++) {
         const at = src + (channels === 3 ? c * 4 : 0);
-        rgb[dst + c] = littleEndian ? bytes.readFloatLE(at) : bytes.readFloatBE(at);
+        rgb[dst + c] = view.getFloat32(at, littleEndian);
       }
     }
   }
@@ -75,7 +77,7 @@ export function decodePfm(data: Uint8Array): PfmImage {
 }
 
 /** Reads the four whitespace-separated header tokens; one whitespace byte ends the header. */
-function readHeader(bytes: Buffer): { tokens: string[]; bodyOffset: number } {
+function readHeader(bytes: Uint8Array): { tokens: string[]; bodyOffset: number } {
   const tokens: string[] = [];
   let i = 0;
   const limit = Math.min(bytes.length, 256);
@@ -83,7 +85,7 @@ function readHeader(bytes: Buffer): { tokens: string[]; bodyOffset: number } {
     while (i < limit && isSpace(bytes[i])) i++;
     const start = i;
     while (i < limit && !isSpace(bytes[i])) i++;
-    if (i > start) tokens.push(bytes.toString('latin1', start, i));
+    if (i > start) tokens.push(String.fromCharCode(...bytes.subarray(start, i)));
   }
   if (tokens.length < 4 || i >= bytes.length || !isSpace(bytes[i])) throw new Error('PFM: incomplete header');
   return { tokens, bodyOffset: i + 1 };

@@ -1,0 +1,101 @@
+/**
+ * Test kernels of the environment map's GLSL (src/shaders/lights/
+ * environment_map.glsl): a float target filled by sampleEnvironment,
+ * environmentPdf or environmentRadiance for a map sent by the test, so the
+ * browser tests check the shader itself (chi-square against its pdf, the
+ * mapping against the format's formula, the lookup against TypeScript).
+ * Registers `window.pathtraceEnvironmentKernels` on the headless page.
+ */
+import fullscreenVert from '../shaders/fullscreen.vert?raw';
+import mathGlsl from '../shaders/common/math.glsl?raw';
+import rngGlsl from '../shaders/common/rng.glsl?raw';
+import environmentGlsl from '../shaders/lights/environment_map.glsl?raw';
+import kernelFrag from '../shaders/test/environment_kernels.frag?raw';
+import { Program } from '../render/gl/program';
+import { FloatTarget } from '../render/gl/targets';
+import { createContext } from '../render/gl/context';
+import { EnvironmentTextures } from '../render/environmentTextures';
+import { buildEnvironmentDistribution } from '../scene/envmap/distribution';
+
+export const ENVIRONMENT_KERNELS = ['sample', 'samplePdfs', 'pdfSphereGrid', 'pdfUvGrid', 'randomDirection', 'randomRadiance', 'radianceAt'] as const;
+export type EnvironmentKernelName = (typeof ENVIRONMENT_KERNELS)[number];
+
+export interface EnvironmentKernelRequest {
+  kernel: EnvironmentKernelName;
+  width: number;
+  height: number;
+  /** The map: width x height texels, rgb rows from the top. */
+  map: { width: number; height: number; rgb: number[] };
+  rotation: number;
+  intensity: number;
+  /** radianceAt: the direction (xyz); pdfUvGrid: x = shift of u. */
+  params?: number[];
+  seed?: number;
+}
+
+const UNITS = { map: 0, marginal: 1, conditional: 2 };
+let context: { gl: WebGL2RenderingContext; program: Program } | null = null;
+
+function kernelContext() {
+  if (!context) {
+    const gl = createContext(new OffscreenCanvas(1, 1), false);
+    const defines = { LOW_DISCREPANCY: 0, ...Object.fromEntries(ENVIRONMENT_KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i])) };
+    const chunks = [
+      { name: 'common/math.glsl', source: mathGlsl },
+      { name: 'common/rng.glsl', source: rngGlsl },
+      { name: 'lights/environment_map.glsl', source: environmentGlsl },
+      { name: 'test/environment_kernels.frag', source: kernelFrag },
+    ];
+    const program = new Program(gl, [{ name: 'fullscreen.vert', source: fullscreenVert }], chunks, defines);
+    gl.bindVertexArray(gl.createVertexArray());
+    context = { gl, program };
+  }
+  return context;
+}
+
+/** Runs a kernel; RGBA float32, rows bottom to top (pixel index = y * width + x). */
+export function runEnvironmentKernel(request: EnvironmentKernelRequest): Float32Array {
+  const { gl, program } = kernelContext();
+  const image = { width: request.map.width, height: request.map.height, rgb: new Float32Array(request.map.rgb) };
+  const textures = new EnvironmentTextures(gl, image, buildEnvironmentDistribution(image));
+  const target = new FloatTarget(gl, request.width, request.height);
+  try {
+    program.use();
+    textures.bind(UNITS);
+    textures.setUniforms(program, UNITS, request.rotation, request.intensity);
+    const params = [0, 0, 0, 0].map((v, i) => request.params?.[i] ?? v);
+    program.setUniforms(
+      { uKernel: ENVIRONMENT_KERNELS.indexOf(request.kernel), uParams: params, uGrid: [request.width, request.height], uSeed: request.seed ?? 1 },
+      { uKernel: 'int', uParams: 'vec4', uGrid: 'vec2', uSeed: 'uint' },
+    );
+    gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
+    gl.viewport(0, 0, request.width, request.height);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    const error = gl.getError();
+    if (error !== gl.NO_ERROR) throw new Error(`environment kernel ${request.kernel}: WebGL error 0x${error.toString(16)}`);
+    return target.read();
+  } finally {
+    target.dispose();
+    textures.dispose();
+  }
+}
+
+function toBase64(data: Float32Array): string {
+  const bytes = new Uint8Array(data.buffer, data.byteOffset, data.byteLength);
+  let binary = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return btoa(binary);
+}
+
+export interface EnvironmentKernelApi {
+  /** Runs a kernel; the float32 result as base64. */
+  run(request: EnvironmentKernelRequest): string;
+}
+
+declare global {
+  interface Window {
+    pathtraceEnvironmentKernels: EnvironmentKernelApi;
+  }
+}
+
+window.pathtraceEnvironmentKernels = { run: (request) => toBase64(runEnvironmentKernel(request)) };

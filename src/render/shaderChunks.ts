@@ -1,0 +1,56 @@
+/**
+ * Which GLSL chunks make up each program, in dependency order, and the
+ * defines they are compiled with. Names are paths under src/shaders/;
+ * `generated/` chunks are made here from the packed layout. No shader text
+ * is imported here, so Node tools (bench/shader-ab.ts) can assemble the same
+ * programs from files; the page gets the text through shaderSources.ts.
+ */
+import { DELTA_ALPHA, GUIDE_MARGIN, GUIDE_PROBABILITY } from './causticGuides';
+import type { ShaderChunk } from './gl/shaderSource';
+import { sceneLayoutDefines, sceneLayoutGlsl } from './layout/scene';
+import type { SceneFeatures } from './packScene';
+import { samplingDefines, type SamplerKind } from './sampling';
+
+/** The chunks every kernel that touches the scene needs. */
+export const SCENE_CHUNK_NAMES = [
+  'common/math.glsl',
+  'common/rng.glsl',
+  'common/sampling.glsl',
+  'scene/layout.glsl',
+  'generated/records.glsl',
+  'scene/access.glsl',
+  'scene/intersect.glsl',
+  'bsdf/ggx.glsl',
+  'bsdf/standard.glsl',
+  'bsdf/dielectric.glsl',
+  'bsdf/bsdf.glsl',
+  'lights/sphere_emitter.glsl',
+  'lights/lights.glsl',
+  'lights/caustic_guide.glsl',
+];
+export const TRACE_CHUNK_NAMES = [...SCENE_CHUNK_NAMES, 'camera.glsl', 'integrator.glsl', 'trace.frag'];
+
+const GENERATED: Record<string, () => string> = {
+  'generated/records.glsl': sceneLayoutGlsl,
+};
+
+/** The named chunks, generated ones made here and the rest read through `source`. */
+export function assembleChunks(names: readonly string[], source: (name: string) => string): ShaderChunk[] {
+  return names.map((name) => ({ name, source: GENERATED[name]?.() ?? source(name) }));
+}
+
+/** Defines of the scene chunks, before the per-variant feature switches. */
+export function sceneDefines(sampler: SamplerKind = 'kronecker', russianRoulette = false): Record<string, string | number> {
+  return {
+    ...sceneLayoutDefines(),
+    ...samplingDefines(sampler, russianRoulette),
+    GUIDE_PROBABILITY: GUIDE_PROBABILITY.toFixed(6),
+    GUIDE_MARGIN: GUIDE_MARGIN.toFixed(6),
+    DELTA_ALPHA: DELTA_ALPHA.toExponential(),
+  };
+}
+
+/** The feature switches of one program variant. */
+export function featureDefines(features: SceneFeatures): Record<string, number> {
+  return { CAUSTIC_GUIDES: features.guides, HAS_DIELECTRIC: features.dielectric ? 1 : 0 };
+}

@@ -1,0 +1,19 @@
+/**
+ * The text of every file under src/shaders/, bundled by Vite, and the
+ * chunk lists of the programs built from it (see shaderChunks.ts).
+ */
+import type { ShaderChunk } from './gl/shaderSource';
+import { assembleChunks, SCENE_CHUNK_NAMES, TRACE_CHUNK_NAMES } from './shaderChunks';
+
+const FILES = import.meta.glob('../shaders/**/*.{glsl,frag,vert}', { query: '?raw', import: 'default', eager: true }) as Record<string, string>;
+
+/** The text of src/shaders/NAME. */
+export function shaderFile(name: string): string {
+  const text = FILES[`../shaders/${name}`];
+  if (text === undefined) throw new Error(`no shader file src/shaders/${name}`);
+  return text;
+}
+
+export const VERTEX_CHUNKS: ShaderChunk[] = assembleChunks(['fullscreen.vert'], shaderFile);
+export const SCENE_CHUNKS: ShaderChunk[] = assembleChunks(SCENE_CHUNK_NAMES, shaderFile);
+export const TRACE_CHUNKS: ShaderChunk[] = assembleChunks(TRACE_CHUNK_NAMES, shaderFile);
