@@ -9,6 +9,7 @@ import { hexToLinear, linearToHex } from '../scene/color';
 import { MAX_BOUNCES } from '../scene/limits';
 import type { Ground, Material } from '../scene/types';
 import type { App } from './App';
+import { addSphereMaterialControls } from './materialControls';
 
 const DEFAULT_GROUND: Ground = { height: 0, material: { type: 'standard', color: [0.8, 0.8, 0.8], roughness: 1 } };
 
@@ -35,10 +36,16 @@ export class Panel {
 
   /** Shows the scene's current values (after undo, load, drags...). */
   refresh(): void {
-    const s = this.app.selection;
-    const key = s ? `${s.kind}:${s.index}` : '';
-    if (key !== this.selectionKey) this.buildSelection();
+    if (this.currentSelectionKey() !== this.selectionKey) this.buildSelection();
     for (const controller of this.gui.controllersRecursive()) controller.updateDisplay();
+  }
+
+  /** What the selection folder was built for: the object and, for a sphere, its material type (type-specific controls). */
+  private currentSelectionKey(): string {
+    const s = this.app.selection;
+    if (!s) return '';
+    const type = s.kind === 'sphere' ? this.app.scene.spheres[s.index]?.material.type : '';
+    return `${s.kind}:${s.index}:${type ?? ''}`;
   }
 
   /** Wires a controller's changes into the edit history. */
@@ -52,15 +59,14 @@ export class Panel {
     const folder = this.selectionFolder;
     for (const c of [...folder.controllers]) c.destroy();
     const s = app.selection;
-    this.selectionKey = s ? `${s.kind}:${s.index}` : '';
+    this.selectionKey = this.currentSelectionKey();
     folder.title(s ? `Selected ${s.kind} ${s.index + 1}` : 'Selection (click an object)');
     if (!s) return;
     const sphere = () => app.scene.spheres[s.index];
     const light = () => app.scene.lights[s.index];
     const edit = (f: () => void) => app.live(f);
     if (s.kind === 'sphere') {
-      const material = () => sphere().material;
-      this.materialControls(folder, material);
+      addSphereMaterialControls(folder, app, sphere, (c) => this.tracked(c));
       this.tracked(folder.add({
         get radius() { return sphere().radius; },
         set radius(v: number) { edit(() => (sphere().radius = v)); },
@@ -83,6 +89,7 @@ export class Panel {
     folder.open();
   }
 
+  /** The ground's material: standard only, no emission (the format forbids glass and emission on the ground). */
   private materialControls(folder: GUI, material: () => Material): void {
     const app = this.app;
     this.tracked(folder.addColor({

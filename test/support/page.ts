@@ -32,13 +32,15 @@ export interface OpenedPage {
 /** Opens the page (small render: SwiftShader is slow) and waits until it has rendered a few samples. */
 export async function openPage(
   harness: PageHarness,
-  options: { hash?: string; url?: string; viewport?: { width: number; height: number }; maxWidth?: number; minSpp?: number } = {},
+  options: { hash?: string; url?: string; viewport?: { width: number; height: number }; maxWidth?: number; minSpp?: number; initScript?: () => void } = {},
 ): Promise<OpenedPage> {
   const page = await harness.browser.newPage({
     viewport: options.viewport ?? { width: 960, height: 600 },
     deviceScaleFactor: 1,
     acceptDownloads: true,
   });
+  // Runs before the page's own scripts (to instrument WebGL or timers).
+  if (options.initScript) await page.addInitScript(options.initScript);
   const errors: string[] = [];
   page.on('console', (message) => {
     if (message.type() === 'error') errors.push(message.text());
