@@ -19,6 +19,8 @@ import { openRenderSession, type LoadOptions, type RenderSession } from '../src/
 import type { SamplerKind } from '../src/render/sampling';
 import { toMitsubaXml } from '../src/scene/mitsuba';
 import { parseSceneText } from '../src/scene/schema';
+import { readSceneFiles } from '../src/node/sceneFiles';
+import { fileURLToPath } from 'node:url';
 import type { Scene } from '../src/scene/types';
 import { gitRevision, machineInfo, projectRoot, type MachineInfo } from './common';
 
@@ -87,12 +89,9 @@ export function fixtureSceneNames(): string[] {
     .sort();
 }
 
-/**
- * Scenes that name map or mesh files: the renderer cannot load those yet
- * (issues 10 and 11), so the benchmark leaves them out until it can.
- */
+/** Scenes with meshes: the renderer cannot trace those yet (issue 11), so the benchmark leaves them out until it can. */
 function needsAssetFiles(scene: Scene): boolean {
-  return scene.meshes.length > 0 || (scene.environment !== null && 'map' in scene.environment);
+  return scene.meshes.length > 0;
 }
 
 function loadReference(name: string): LinearImage {
@@ -144,11 +143,12 @@ async function benchOurs(
   target: number,
   seed: number,
   sampler: SamplerKind,
+  files: Record<string, Uint8Array>,
 ): Promise<{ run: RendererRun; startupSeconds: number }> {
   // Load and a first draw: shader compile, link and SwiftShader's JIT (timed
   // as startup), then a fresh accumulation on the same context.
   const t0 = performance.now();
-  await session.load(scene, { ...size, seed, sampler } as LoadOptions);
+  await session.load(scene, { ...size, seed, sampler } as LoadOptions, files);
   await session.render(1);
   const startupSeconds = (performance.now() - t0) / 1000;
   await session.reset();
@@ -195,9 +195,11 @@ function benchMitsuba(
   target: number,
   seed: number,
   dir: string,
+  sceneFile: string,
 ): RendererRun & { cpuSeconds: number[] } {
   const xml = path.join(dir, 'scene.xml');
-  writeFileSync(xml, toMitsubaXml(scene, { ...size, seed }));
+  const environmentMapPath = (map: string) => path.resolve(path.dirname(sceneFile), map);
+  writeFileSync(xml, toMitsubaXml(scene, { ...size, seed, environmentMapPath }));
   const script = new URL('bench/mitsuba/render.py', projectRoot()).pathname;
   const checkpoints: Checkpoint[] = [];
   const cpuSeconds: number[] = [];
@@ -233,7 +235,9 @@ export async function runBench(options: BenchOptions = {}): Promise<BenchResult>
   try {
     machine = await machineInfo(session);
     for (const name of scenes) {
-      const scene = parseSceneText(readFileSync(new URL(`scenes/${name}.json`, FIXTURES), 'utf8'));
+      const sceneFile = fileURLToPath(new URL(`scenes/${name}.json`, FIXTURES));
+      const scene = parseSceneText(readFileSync(sceneFile, 'utf8'));
+      const { files } = await readSceneFiles(scene, sceneFile);
       const reference = loadReference(name);
       const size = { width: reference.width * scale, height: reference.height * scale };
       const score = (image: LinearImage) => relativeMse(downsample(image, scale), reference);
@@ -241,12 +245,12 @@ export async function runBench(options: BenchOptions = {}): Promise<BenchResult>
       const sceneRows: SceneRow[] = [];
       for (const sampler of samplers) {
         log(`${name}: ours (${sampler})...`);
-        const { run, startupSeconds } = await benchOurs(session, scene, size, score, times, target, seed, sampler);
+        const { run, startupSeconds } = await benchOurs(session, scene, size, score, times, target, seed, sampler, files);
         sceneRows.push({ scene: name, sampler, ...size, maxBounces: scene.render.maxBounces, startupSeconds, ours: run });
       }
       if (mitsubaVersion) {
         log(`${name}: Mitsuba...`);
-        const mitsuba = benchMitsuba(scene, size, score, times, target, seed, dir);
+        const mitsuba = benchMitsuba(scene, size, score, times, target, seed, dir, sceneFile);
         for (const row of sceneRows) {
           row.mitsuba = mitsuba;
           row.ratio = row.ours.checkpoints.map((c, i) => c.relMse / mitsuba.checkpoints[i].relMse);

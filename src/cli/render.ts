@@ -14,7 +14,7 @@ import { checkWritable, defaultPngPath, writeOutputs } from './output';
 import { encodePfm } from '../image/pfm';
 import { encodePng } from './png';
 import { createProgress, formatRate, type Progress, type ProgressStream } from './progress';
-import { loadSceneFile } from './validate';
+import { loadSceneFile, loadSceneFiles } from './validate';
 
 /** The part of a RenderSession the CLI uses. */
 export type CliSession = Pick<RenderSession, 'load' | 'render' | 'readLinear' | 'readDisplayed' | 'close'>;
@@ -53,6 +53,7 @@ export interface RenderOutcome {
 export async function renderCommand(sceneFile: string, raw: RawRenderOptions, ctx: RenderContext): Promise<RenderOutcome> {
   const args = parseRenderArgs(raw, ctx.session.TONEMAPS);
   const scene = await loadSceneFile(sceneFile);
+  const { files: sceneFiles } = await loadSceneFiles(sceneFile, scene);
   const { width, height } = resolveSize(scene.image, args);
   const pngPath = raw.output ?? defaultPngPath(sceneFile, ctx.cwd);
   const hdrPath = raw.hdr;
@@ -62,13 +63,13 @@ export async function renderCommand(sceneFile: string, raw: RawRenderOptions, ct
   const now = ctx.now ?? (() => performance.now() / 1000);
   try {
     const result = await withSession(ctx.session, progress, (session) =>
-      renderImages(session, scene, args, { width, height }, progress, now, hdrPath !== undefined),
+      renderImages(session, scene, sceneFiles, args, { width, height }, progress, now, hdrPath !== undefined),
     );
     progress.stop();
-    const files: { path: string; data: Uint8Array }[] = [{ path: pngPath, data: encodePng(width, height, result.displayed) }];
-    if (hdrPath !== undefined && result.linear) files.push({ path: hdrPath, data: encodePfm(width, height, result.linear) });
-    await writeOutputs(files);
-    const outcome = { spp: result.spp, seconds: result.seconds, width, height, files: files.map((f) => f.path) };
+    const outputs: { path: string; data: Uint8Array }[] = [{ path: pngPath, data: encodePng(width, height, result.displayed) }];
+    if (hdrPath !== undefined && result.linear) outputs.push({ path: hdrPath, data: encodePfm(width, height, result.linear) });
+    await writeOutputs(outputs);
+    const outcome = { spp: result.spp, seconds: result.seconds, width, height, files: outputs.map((f) => f.path) };
     ctx.stderr.write(`${summaryLine(outcome)}\n`);
     return outcome;
   } finally {
@@ -148,6 +149,7 @@ interface RenderedImages {
 async function renderImages(
   session: CliSession,
   scene: Scene,
+  files: Record<string, Uint8Array>,
   args: RenderArgs,
   size: { width: number; height: number },
   progress: Progress,
@@ -155,7 +157,7 @@ async function renderImages(
   wantLinear: boolean,
 ): Promise<RenderedImages> {
   progress.status('loading scene and compiling the shader...');
-  await session.load(scene, { width: size.width, height: size.height, seed: args.seed });
+  await session.load(scene, { width: size.width, height: size.height, seed: args.seed }, files);
   progress.start();
   const { spp, seconds } = await renderBudget(session, args.budget, progress, now);
   progress.stop();

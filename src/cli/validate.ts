@@ -6,6 +6,7 @@
 import { readFile, stat } from 'node:fs/promises';
 import { MAX_SCENE_BYTES } from '../scene/limits';
 import { parseSceneText } from '../scene/schema';
+import { readSceneFiles, type SceneFiles } from '../node/sceneFiles';
 import type { Scene } from '../scene/types';
 import { CliError, usageError } from './errors';
 
@@ -71,6 +72,21 @@ export async function loadSceneFile(file: string): Promise<Scene> {
   }
 }
 
+/**
+ * Reads and decodes the files a scene names (maps, meshes), relative to the
+ * scene file: every unusable file is a usage error (exit 2), one line each,
+ * found before a browser starts.
+ */
+export async function loadSceneFiles(file: string, scene: Scene): Promise<SceneFiles> {
+  try {
+    return await readSceneFiles(scene, file);
+  } catch (error) {
+    const issues = sceneIssues(error);
+    if (issues) throw usageError(formatSceneIssues(file, issues), error);
+    throw error;
+  }
+}
+
 /** A one-line summary of a valid scene, for `validate`. */
 export function describeScene(file: string, scene: Scene): string {
   const plural = (n: number, word: string) => `${n} ${word}${n === 1 ? '' : 's'}`;
@@ -78,8 +94,9 @@ export function describeScene(file: string, scene: Scene): string {
     `${scene.image.width}x${scene.image.height}`,
     plural(scene.spheres.length, 'sphere'),
     plural(scene.lights.length, 'light'),
+    ...(scene.meshes.length > 0 ? [plural(scene.meshes.length, 'mesh').replace(/meshs$/, 'meshes')] : []),
     scene.ground ? 'ground' : 'no ground',
-    scene.environment ? 'environment' : 'black environment',
+    scene.environment ? ('map' in scene.environment ? `environment map ${scene.environment.map}` : 'environment') : 'black environment',
     `maxBounces ${scene.render.maxBounces}`,
   ];
   return `${file}: valid scene (${parts.join(', ')})`;
@@ -88,5 +105,6 @@ export function describeScene(file: string, scene: Scene): string {
 /** `pathtrace validate`: exit 0 and a summary on stdout, or exit 2 with one line per problem. */
 export async function validateCommand(file: string, stdout: TextSink): Promise<void> {
   const scene = await loadSceneFile(file);
+  await loadSceneFiles(file, scene);
   stdout.write(`${describeScene(file, scene)}\n`);
 }

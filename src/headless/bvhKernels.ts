@@ -49,7 +49,7 @@ function kernelContext() {
       gl,
       [{ name: 'fullscreen.vert', source: fullscreenVert }],
       [{ name: 'scene/bvh.glsl', source: bvhGlsl }, { name: 'test/bvh_kernels.frag', source: kernelFrag }],
-      bvhDefines(),
+      { ...bvhDefines(), HAS_MESHES: 1 },
     );
     gl.bindVertexArray(gl.createVertexArray());
     context = { gl, program };

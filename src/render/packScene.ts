@@ -20,6 +20,8 @@ export interface SceneFeatures {
   guides: number;
   dielectric: boolean;
   environmentMap: boolean;
+  /** Triangle meshes (the BVH traversal). */
+  meshes: boolean;
 }
 
 /** What packing needs to know of the scene's decoded files. */
@@ -34,6 +36,8 @@ export interface PackedScene {
   /** The uniform block: BLOCK_VEC4S vec4s. */
   block: Float32Array;
   features: SceneFeatures;
+  /** The material-table index of each of scene.meshes (every triangle of a mesh carries it). */
+  meshMaterials: number[];
 }
 
 interface SceneSphere extends GuideSphere {
@@ -79,6 +83,7 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     data.set(choice, (SECTIONS.emitterChoices + i * EMITTER_CHOICE.texels) * 4);
   });
   const groundMaterial = scene.ground ? addMaterial(materialRecord(scene.ground.material)) : 0;
+  const meshMaterials = scene.meshes.map((mesh) => addMaterial(materialRecord(mesh.material)));
   materials.forEach((record, i) => data.set(record, (SECTIONS.materials + i * MATERIAL.texels) * 4));
 
   const guides = selectCausticGuides(spheres);
@@ -101,9 +106,12 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     block.set([...spheres[mirror].center, spheres[mirror].radius], base + GUIDE_FIELDS.MIRROR * 4);
     block.set([...spheres[light].center, spheres[light].radius], base + GUIDE_FIELDS.LIGHT * 4);
   });
-  const dielectric = spheres.some((s) => s.material !== 'emitterOnly' && s.material.type === 'dielectric');
+  const dielectric =
+    spheres.some((s) => s.material !== 'emitterOnly' && s.material.type === 'dielectric') ||
+    scene.meshes.some((m) => m.material.type === 'dielectric');
   const environmentMap = environment !== null && 'map' in environment;
-  return { data, block, features: { guides: guides.length, dielectric, environmentMap } };
+  const features = { guides: guides.length, dielectric, environmentMap, meshes: scene.meshes.length > 0 };
+  return { data, block, features, meshMaterials };
 }
 
 /** The scene's spheres in shader order: `spheres`, then `lights` as emitter-only spheres. */

@@ -10,6 +10,7 @@ import type { ShaderChunk } from './gl/shaderSource';
 import { sceneLayoutDefines, sceneLayoutGlsl } from './layout/scene';
 import type { SceneFeatures } from './packScene';
 import { samplingDefines, type SamplerKind } from './sampling';
+import { bvhDefines } from './bvhTextures';
 
 /** The chunks every kernel that touches the scene needs. */
 export const SCENE_CHUNK_NAMES = [
@@ -19,6 +20,7 @@ export const SCENE_CHUNK_NAMES = [
   'scene/layout.glsl',
   'generated/records.glsl',
   'scene/access.glsl',
+  'scene/bvh.glsl',
   'scene/intersect.glsl',
   'bsdf/ggx.glsl',
   'bsdf/standard.glsl',
@@ -48,6 +50,7 @@ export function sceneDefines(sampler: SamplerKind = 'kronecker', russianRoulette
     GUIDE_PROBABILITY: GUIDE_PROBABILITY.toFixed(6),
     GUIDE_MARGIN: GUIDE_MARGIN.toFixed(6),
     DELTA_ALPHA: DELTA_ALPHA.toExponential(),
+    ...bvhDefines(),
   };
 }
 
@@ -57,5 +60,6 @@ export function featureDefines(features: SceneFeatures): Record<string, number> 
     CAUSTIC_GUIDES: features.guides,
     HAS_DIELECTRIC: features.dielectric ? 1 : 0,
     HAS_ENV_MAP: features.environmentMap ? 1 : 0,
+    HAS_MESHES: features.meshes ? 1 : 0,
   };
 }

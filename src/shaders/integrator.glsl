@@ -52,7 +52,11 @@ vec3 traceRadiance(vec3 direction, Hit hit, Material material, vec3 radiance) {
   vec3 throughput = vec3(1.0);
 
   for (int depth = 0; ; depth++) {
-    mat3 frame = basisAround(hit.normal);
+    // Standard materials on meshes are two-sided (Mitsuba's twosided): seen
+    // from behind they shade as from the front.
+    bool flip = hit.twoSided && material.type == MATERIAL_STANDARD && dot(direction, hit.normal) > 0.0;
+    vec3 normal = flip ? -hit.normal : hit.normal;
+    mat3 frame = basisAround(normal);
     vec3 wo = -direction * frame;
 
     // Random numbers of this bounce: light sample, BSDF sample.
@@ -65,7 +69,7 @@ vec3 traceRadiance(vec3 direction, Hit hit, Material material, vec3 radiance) {
 #endif
 
     // Caustic guides at this vertex (see lights/caustic_guide.glsl).
-    buildGuides(hit.position, hit.normal, material);
+    buildGuides(hit.position, normal, material);
 
     // Light arriving directly from an emitter (next-event estimation).
     vec3 direct = sampleDirectLight(hit, frame, wo, material, uLight.xyz);

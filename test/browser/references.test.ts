@@ -41,7 +41,7 @@ const REFERENCE_NOISE = 0.01 / BLOCK;
  */
 const REFERENCE_SYSTEMATIC = 0.003;
 /** Total spp per scene (two halves); harder light transport gets more. */
-const SCENES: Record<string, number> = { seed: 256, glossy: 512, 'small-light': 256, mirrors: 768, glass: 512, emissive: 256 };
+const SCENES: Record<string, number> = { seed: 256, glossy: 512, 'small-light': 256, mirrors: 768, glass: 512, emissive: 256, envmap: 768, bunny: 512 };
 const BATCHES = 8;
 
 describe('convergence to the Mitsuba 3 references', () => {

@@ -3,7 +3,7 @@ import { buildAliasTable } from '../../src/render/aliasTable';
 import { selectCausticGuides } from '../../src/render/causticGuides';
 import { defineRecord, packRecord, recordGlsl } from '../../src/render/layout/records';
 import {
-  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, GUIDE_FIELDS, HEADER, MATERIAL, MATERIAL_TYPES, MAX_GUIDES, SECTIONS, SPHERE,
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, HEADER, MATERIAL, MATERIAL_TYPES, MAX_GUIDES, SECTIONS, SPHERE,
 } from '../../src/render/layout/scene';
 import { packScene } from '../../src/render/packScene';
 import { parseScene } from '../../src/scene/schema';
@@ -73,9 +73,10 @@ describe('packScene', () => {
     expect(header).toMatchObject({ sphereCount: 3, emitterCount: 2, groundEnabled: 1, groundHeight: -1, environment: [1, 0.5, 2] });
     const emitters = [0, 1].map((i) => readRecord(packed.data, SECTIONS.emitters, EMITTER, i));
     expect(emitters.map((e) => e.primitive)).toEqual([0, 2]);
-    // Power ~ radiance sum * r^2: 9 * 1 vs 7 * 0.25.
-    expect(emitters[0].pdf).toBeCloseTo(9 / (9 + 1.75), 6);
-    expect(emitters[1].pdf).toBeCloseTo(1.75 / (9 + 1.75), 6);
+    // Power ~ luminance * r^2: 3 * 1 vs luminance([4, 2, 1]) * 0.25.
+    const light = (0.2126 * 4 + 0.7152 * 2 + 0.0722 * 1) * 0.25;
+    expect(emitters[0].pdf).toBeCloseTo(3 / (3 + light), 6);
+    expect(emitters[1].pdf).toBeCloseTo(light / (3 + light), 6);
     for (const e of emitters) {
       const sphere = readRecord(packed.data, SECTIONS.spheres, SPHERE, e.primitive as number);
       expect(sphere.emitterPdf).toBe(e.pdf);
@@ -85,13 +86,43 @@ describe('packScene', () => {
     expect(ground).toMatchObject({ type: MATERIAL_TYPES.standard, roughness: expect.closeTo(0.4, 6) });
     const choice = readRecord(packed.data, SECTIONS.emitterChoices, EMITTER_CHOICE, 1);
     expect(choice.alias).toBe(0);
-    expect(packed.features).toEqual({ guides: 0, dielectric: true });
+    expect(packed.features).toEqual({ guides: 0, dielectric: true, environmentMap: false, meshes: false });
+  });
+
+  it('makes an environment map an emitter picked by its power, and glass on meshes a glass feature', () => {
+    const withMap = parseScene({
+      version: 2,
+      camera,
+      environment: { map: 'sky.hdr', intensity: 2 },
+      lights: [{ position: [0, 3, 0], radius: 0.5, intensity: 10 }],
+      meshes: [{ file: 'gem.obj', material: { type: 'dielectric' } }],
+    });
+    const integral = 4 * Math.PI; // a white map of radiance 1
+    const packed = packScene(withMap, { environmentIntegral: integral });
+    const header = readRecord(packed.block, 0, HEADER, 0);
+    expect(header.emitterCount).toBe(2);
+    const environment = readRecord(packed.data, SECTIONS.emitters, EMITTER, 1);
+    expect(environment.kind).toBe(EMITTER_KINDS.environment);
+    expect(header.environmentPdf).toBe(environment.pdf);
+    // pi R^2 * integral * intensity against pi * 4 pi r^2 * luminance; R = 1.5 (camera to light centre spread), at least 1.
+    const light = 4 * Math.PI * Math.PI * 0.25 * 10;
+    const points = [[0, 1, 5], [0, 3, 0], [0, 0, 0]];
+    const c = [0, 1, 2].map((k) => points.reduce((sum, p) => sum + p[k], 0) / 3);
+    let radius = 1;
+    for (const p of points) radius = Math.max(radius, Math.hypot(p[0] - c[0], p[1] - c[1], p[2] - c[2]));
+    radius = Math.max(radius, Math.hypot(0 - c[0], 3 - c[1], 0 - c[2]) + 0.5);
+    const sky = Math.PI * radius * radius * integral * 2;
+    expect(environment.pdf).toBeCloseTo(sky / (sky + light), 6);
+    expect(packed.features).toEqual({ guides: 0, dielectric: true, environmentMap: true, meshes: true });
+    expect(readRecord(packed.data, SECTIONS.materials, MATERIAL, packed.meshMaterials[0]).type).toBe(MATERIAL_TYPES.dielectric);
+    // Without the map's distribution (or with a black map) the environment is no emitter.
+    expect(readRecord(packScene(withMap).block, 0, HEADER, 0)).toMatchObject({ emitterCount: 1, environmentPdf: 0 });
   });
 
   it('packs an empty scene with zero counts and a black environment', () => {
     const empty = packScene(parseScene({ camera }));
     expect(readRecord(empty.block, 0, HEADER, 0)).toMatchObject({ sphereCount: 0, emitterCount: 0, groundEnabled: 0, environment: [0, 0, 0] });
-    expect(empty.features).toEqual({ guides: 0, dielectric: false });
+    expect(empty.features).toEqual({ guides: 0, dielectric: false, environmentMap: false, meshes: false });
   });
 });
 

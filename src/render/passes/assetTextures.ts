@@ -1,16 +1,22 @@
 /**
  * The GPU copies of a scene's decoded files: the environment map (image and
- * sampling distribution) and, later, the triangle BVH. Each is uploaded only
- * when the data itself changes (by identity), so scene edits re-upload
- * nothing here; rotation and intensity are plain uniforms.
+ * sampling distribution) and the BVH over the meshes' world-space triangles.
+ * Each is uploaded only when its inputs change (the map by identity; the BVH
+ * when a mesh's data, transform or material slot changes), so other scene
+ * edits re-upload nothing here; map rotation and intensity are uniforms.
  */
 import { buildEnvironmentDistribution, type EnvironmentDistribution } from '../../scene/envmap';
-import type { EnvironmentImage, Scene } from '../../scene/types';
+import type { SceneAssets } from '../../scene/assets';
+import { transformMesh } from '../../scene/mesh';
+import type { EnvironmentImage, Scene, TriangleMesh } from '../../scene/types';
+import { buildBvh, packBvh } from '../bvh';
+import { BvhTextures } from '../bvhTextures';
 import { EnvironmentTextures } from '../environmentTextures';
 import type { Program } from '../gl/program';
 
 /** Texture units (0 holds the running sums, 1 the scene data). */
 const ENVIRONMENT_UNITS = { map: 2, marginal: 3, conditional: 4 };
+const BVH_UNITS = { nodes: 5, triangles: 6 };
 
 /** Distributions by image: building one takes tens of milliseconds for a 2k map. */
 const distributions = new WeakMap<EnvironmentImage, EnvironmentDistribution>();
@@ -26,6 +32,7 @@ export function environmentDistribution(image: EnvironmentImage): EnvironmentDis
 
 export class AssetTextures {
   private environment: { image: EnvironmentImage; textures: EnvironmentTextures } | null = null;
+  private bvh: { key: string; data: TriangleMesh[]; textures: BvhTextures } | null = null;
 
   constructor(private readonly gl: WebGL2RenderingContext) {}
 
@@ -36,18 +43,37 @@ export class AssetTextures {
     this.environment = image ? { image, textures: new EnvironmentTextures(this.gl, image, environmentDistribution(image)) } : null;
   }
 
+  /**
+   * Builds and uploads the BVH of the scene's meshes (each mesh's triangles
+   * carry `materials[i]`) unless nothing it depends on changed.
+   */
+  setMeshes(scene: Scene, assets: SceneAssets, materials: readonly number[]): void {
+    const data = scene.meshes.map((mesh) => assets.meshes.get(mesh.file)!);
+    const key = JSON.stringify(scene.meshes.map((m, i) => [m.position, m.rotation, m.scale, materials[i]]));
+    if (this.bvh && this.bvh.key === key && this.bvh.data.every((d, i) => d === data[i]) && data.length === this.bvh.data.length) return;
+    this.bvh?.textures.dispose();
+    this.bvh = null;
+    if (data.length === 0) return;
+    const inputs = scene.meshes.map((mesh, i) => ({ ...transformMesh(data[i], mesh), material: materials[i] }));
+    const packed = packBvh(buildBvh(inputs), inputs);
+    this.bvh = { key, data, textures: new BvhTextures(this.gl, packed) };
+  }
+
   /** Sets the uniforms of the uploaded data on `program` (in use). */
   setUniforms(program: Program, scene: Scene): void {
     const e = scene.environment;
     if (this.environment && e && 'map' in e) this.environment.textures.setUniforms(program, ENVIRONMENT_UNITS, e.rotation, e.intensity);
   }
 
-  /** Binds the textures to their units (leaves another unit than 0 active: callers set it back). */
-  bind(): void {
+  /** Binds the textures to their units for `program` (in use); leaves another unit than 0 active. */
+  bind(program: Program): void {
     this.environment?.textures.bind(ENVIRONMENT_UNITS);
+    this.bvh?.textures.bind(program, BVH_UNITS);
   }
 
   dispose(): void {
     this.setEnvironmentMap(null);
+    this.bvh?.textures.dispose();
+    this.bvh = null;
   }
 }

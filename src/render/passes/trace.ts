@@ -12,7 +12,7 @@ import type { SamplerKind } from '../sampling';
 import { featureDefines, sceneDefines } from '../shaderChunks';
 import { TRACE_CHUNKS, VERTEX_CHUNKS } from '../shaderSources';
 
-const featureKey = (f: SceneFeatures) => `${f.guides}/${f.dielectric ? 1 : 0}/${f.environmentMap ? 1 : 0}`;
+const featureKey = (f: SceneFeatures) => JSON.stringify(f);
 
 const UNIFORM_TYPES: Record<string, string> = {
   uInverseViewProjection: 'mat4',
@@ -65,8 +65,8 @@ export class TracePass {
     russianRoulette = false,
   ) {
     this.defines = sceneDefines(sampler, russianRoulette);
-    this.program = this.programFor({ guides: 0, dielectric: false, environmentMap: false });
-    this.programFor({ guides: 1, dielectric: false, environmentMap: false });
+    this.program = this.programFor({ guides: 0, dielectric: false, environmentMap: false, meshes: false });
+    this.programFor({ guides: 1, dielectric: false, environmentMap: false, meshes: false });
     this.assets = new AssetTextures(gl);
     this.sceneBuffer = gl.createBuffer()!;
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
@@ -103,6 +103,7 @@ export class TracePass {
     const map = scene.environment && 'map' in scene.environment ? assets.maps.get(scene.environment.map)! : null;
     this.assets.setEnvironmentMap(map);
     const packed = packScene(scene, { environmentIntegral: map ? environmentDistribution(map).integral : undefined });
+    this.assets.setMeshes(scene, assets, packed.meshMaterials);
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
     gl.bufferSubData(gl.UNIFORM_BUFFER, 0, packed.block);
     gl.bindBuffer(gl.UNIFORM_BUFFER, null);
@@ -144,7 +145,7 @@ export class TracePass {
       UNIFORM_TYPES,
     );
     gl.bindBufferBase(gl.UNIFORM_BUFFER, SCENE_BLOCK_BINDING, this.sceneBuffer);
-    this.assets.bind();
+    this.assets.bind(this.program);
     gl.activeTexture(gl.TEXTURE0 + SCENE_TEXTURE_UNIT);
     gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
     gl.activeTexture(gl.TEXTURE0);

@@ -15,6 +15,9 @@
 // shared edge or vertex hits one of its triangles. Hits need 0 < t < tMax:
 // the caller offsets ray origins.
 
+// Compiled in only for scenes with meshes (HAS_MESHES; trace program variants).
+#if HAS_MESHES
+
 #ifndef BVH_TEXTURE_WIDTH_LOG2
 #define BVH_TEXTURE_WIDTH_LOG2 12
 #endif
@@ -151,3 +154,5 @@ BvhSurface bvhSurface(BvhHit hit) {
   s.mesh = int(t2.w);
   return s;
 }
+
+#endif

@@ -1,19 +1,23 @@
 // Closest-hit and any-hit queries over every shape of the scene (spheres,
-// whose records include the `lights`; the ground plane). A Hit does not
-// depend on the kind of shape: the integrator sees a point, a normal and a
-// material, and asks the light interface (lights/lights.glsl) how likely
-// light sampling was to find the hit.
+// whose records include the `lights`; the ground plane; the triangles of
+// meshes through the BVH of scene/bvh.glsl). A Hit does not depend on the
+// kind of shape: the integrator sees a point, normals and a material, and
+// asks the light interface (lights/lights.glsl) how likely light sampling
+// was to find the hit.
 
 const int HIT_NONE = 0;
 const int HIT_SPHERE = 1;
 const int HIT_GROUND = 2;
+const int HIT_TRIANGLE = 3;
 
 struct Hit {
   float t;
   int kind;
   int index;        // sphere index (HIT_SPHERE)
   vec3 position;
-  vec3 normal;      // geometric normal on the outside of the surface
+  vec3 normal;      // shading normal, on the outside of the surface: it decides the side
+  vec3 geometricNormal;  // offsets spawned rays (equal to `normal` but on smooth meshes)
+  bool twoSided;    // a standard material on a mesh scatters alike on both sides
   float scale;      // size of the hit object, for the self-intersection offset
   vec4 geometry;    // the sphere hit: [center, radius]
   int material;     // index into the material table
@@ -86,6 +90,24 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   hit.geometry = geometry;
   hit.material = isGround ? groundMaterial() : record.material;
   hit.emitterPdf = isGround ? 0.0 : record.emitterPdf;
+  hit.geometricNormal = hit.normal;
+  hit.twoSided = false;
+#if HAS_MESHES
+  BvhHit triangle;
+  if (bvhClosestHit(origin, direction, hit.t, triangle)) {
+    BvhSurface s = bvhSurface(triangle);
+    hit.t = triangle.t;
+    hit.kind = HIT_TRIANGLE;
+    hit.index = triangle.triangle;
+    hit.position = s.position;
+    hit.normal = s.shadingNormal;
+    hit.geometricNormal = s.geometricNormal;
+    hit.scale = 0.0;
+    hit.material = s.material;
+    hit.emitterPdf = 0.0;
+    hit.twoSided = true;  // for standard materials: see traceRadiance
+  }
+#endif
   return hit;
 }
 
@@ -112,12 +134,16 @@ bool occluded(vec3 origin, vec3 direction, float tMax, int skipSphere) {
     float c = segmentClearance(origin, direction, tMax, sphereGeometry(i));
     clearance = min(clearance, i == skipSphere ? INFINITY : c);
   }
-  return clearance < 0.0 || groundHitT(origin, direction) < tMax;
+  bool blocked = clearance < 0.0 || groundHitT(origin, direction) < tMax;
+#if HAS_MESHES
+  blocked = blocked || bvhAnyHit(origin, direction, tMax);
+#endif
+  return blocked;
 }
 
 // Origin for a ray leaving `hit` into the side of `side` (a direction).
 vec3 spawnRayOrigin(Hit hit, vec3 side) {
-  vec3 n = dot(side, hit.normal) >= 0.0 ? hit.normal : -hit.normal;
+  vec3 n = dot(side, hit.geometricNormal) >= 0.0 ? hit.geometricNormal : -hit.geometricNormal;
   float offset = 4e-6 * (maxComponent(abs(hit.position)) + hit.scale) + 1e-6;
   return hit.position + n * offset;
 }
