@@ -4,7 +4,7 @@
  */
 import { readFile } from 'node:fs/promises';
 import path from 'node:path';
-import { assetReferences, loadSceneAssets, type SceneAssets } from '../scene/assets';
+import type { SceneAssets } from '../scene/assets';
 import type { Scene } from '../scene/types';
 
 export interface SceneFiles {
@@ -16,6 +16,10 @@ export interface SceneFiles {
 
 /** Reads and decodes every file `scene` names; throws SceneError naming each unusable one (`meshes[0].file: ...`). */
 export async function readSceneFiles(scene: Scene, sceneFile: string): Promise<SceneFiles> {
+  if (!namesFiles(scene)) return { files: {}, assets: { maps: new Map(), meshes: new Map() } };
+  // The decoders (three.js's EXR loader, glTF-Transform, Draco) load only
+  // for scenes that need them: the CLI starts fast, and owns Ctrl-C early.
+  const { loadSceneAssets } = await import('../scene/assets');
   const folder = path.dirname(path.resolve(sceneFile));
   const files: Record<string, Uint8Array> = {};
   const assets = await loadSceneAssets(scene, async (name) => {
@@ -28,5 +32,5 @@ export async function readSceneFiles(scene: Scene, sceneFile: string): Promise<S
 
 /** Whether the scene names any file. */
 export function namesFiles(scene: Scene): boolean {
-  return assetReferences(scene).length > 0;
+  return scene.meshes.length > 0 || (scene.environment !== null && 'map' in scene.environment);
 }

@@ -124,7 +124,8 @@ export interface Scene {
  * An equirectangular (latitude-longitude) environment image of linear RGB
  * radiance: `rgb` holds width * height * 3 floats, row 0 at the top (the
  * zenith), each row from u = 0 (left) to u = 1. Decoded from `.hdr`/`.exr`
- * by src/scene/envmap/; every value finite and >= 0.
+ * by src/scene/envmap/; every value finite (negative texels of lossy EXR
+ * files are kept, as Mitsuba keeps them).
  */
 export interface EnvironmentImage {
   width: number;

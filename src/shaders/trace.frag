@@ -10,10 +10,12 @@ uniform uint uSeed;
 
 out vec4 outSum;
 
-// NaN fails every comparison, so this rejects NaN, Inf and negative values
-// even where a compiler treats isnan()/isinf() as always false.
+// NaN fails every comparison, so this rejects NaN and Inf even where a
+// compiler treats isnan()/isinf() as always false. Finite negative samples
+// are valid: an environment map may hold negative texels (lossy EXR codecs
+// ring below zero), which Mitsuba's envmap, the format's definition, keeps.
 bool isValidRadiance(vec3 c) {
-  return all(greaterThanEqual(c, vec3(0.0))) && all(lessThan(c, vec3(MAX_RADIANCE)));
+  return all(lessThan(abs(c), vec3(MAX_RADIANCE)));
 }
 
 void accumulate(inout vec4 sum, vec3 radiance) {

@@ -28,10 +28,9 @@ import { encodePfm } from '../../src/image/pfm';
 import { blockMeans, compareBlocks, type LinearImage, meanValue, relativeMse } from '../../src/node/imageMetrics';
 import { loadFixtureScene, loadReference, renderLinear, useRenderSession } from '../support/browser';
 
-const BLOCK = 16;
+const DEFAULT_BLOCK = 16;
 const Z_MAX = 6;
-const WORST_BLOCK = 0.05;
-const REFERENCE_NOISE = 0.01 / BLOCK;
+const DEFAULT_WORST_BLOCK = 0.05;
 /**
  * A known systematic difference of the references: Mitsuba's perspective
  * sensor clips at far_clip = 1e4, so in a sliver below the horizon the
@@ -40,15 +39,33 @@ const REFERENCE_NOISE = 0.01 / BLOCK;
  * (the absolute WORST_BLOCK bound still holds everywhere).
  */
 const REFERENCE_SYSTEMATIC = 0.003;
-/** Total spp per scene (two halves); harder light transport gets more. */
-const SCENES: Record<string, number> = { seed: 256, glossy: 512, 'small-light': 256, mirrors: 768, glass: 512, emissive: 256, envmap: 768, bunny: 512 };
+/**
+ * Total spp per scene; harder light transport gets more. `block` and
+ * `worstBlock` override BLOCK and WORST_BLOCK where the noise is heavy-tailed
+ * beyond what a CI-sized render can average in 16x16 blocks: in `bunny` the
+ * ground under the faceted glass gem is lit only through refraction (glass
+ * blocks shadow rays), found by BSDF sampling alone. Its 16x16 blocks keep
+ * sigma ~4.7% at 512 spp; 32x32 blocks at 768 spp come to ~1.9%, and the
+ * bound is 8% (over 4 sigma) with the 6-sigma test unchanged.
+ */
+const SCENES: Record<string, { spp: number; block?: number; worstBlock?: number }> = {
+  seed: { spp: 256 },
+  glossy: { spp: 512 },
+  'small-light': { spp: 256 },
+  mirrors: { spp: 768 },
+  glass: { spp: 512 },
+  emissive: { spp: 256 },
+  envmap: { spp: 768 },
+  bunny: { spp: 768, block: 32, worstBlock: 0.08 },
+};
 const BATCHES = 8;
 
 describe('convergence to the Mitsuba 3 references', () => {
   const session = useRenderSession();
 
-  for (const [name, spp] of Object.entries(SCENES)) {
+  for (const [name, { spp, block: BLOCK = DEFAULT_BLOCK, worstBlock: WORST_BLOCK = DEFAULT_WORST_BLOCK }] of Object.entries(SCENES)) {
     it(`${name} at ${spp} spp matches its reference within the measured noise`, async () => {
+      const REFERENCE_NOISE = 0.01 / BLOCK;
       const scene = loadFixtureScene(name);
       const reference = loadReference(name);
       const batches: LinearImage[] = [];
