@@ -17,7 +17,8 @@ import { decodePfm } from '../src/image/pfm';
 import { relativeMse, type LinearImage } from '../src/node/imageMetrics';
 import { openRenderSession, type LoadOptions, type RenderSession } from '../src/node/session';
 import type { SamplerKind } from '../src/render/sampling';
-import { toMitsubaXml } from '../src/scene/mitsuba';
+import { meshPlyFile, toMitsubaXml } from '../src/scene/mitsuba';
+import type { SceneAssets } from '../src/scene/assets';
 import { parseSceneText } from '../src/scene/schema';
 import { readSceneFiles } from '../src/node/sceneFiles';
 import { fileURLToPath } from 'node:url';
@@ -85,14 +86,10 @@ export function fixtureSceneNames(): string[] {
   return readdirSync(new URL('scenes/', FIXTURES))
     .filter((f) => f.endsWith('.json') && existsSync(new URL(`references/${f.replace(/\.json$/, '.pfm')}`, FIXTURES)))
     .map((f) => f.replace(/\.json$/, ''))
-    .filter((name) => !needsAssetFiles(parseSceneText(readFileSync(new URL(`scenes/${name}.json`, FIXTURES), 'utf8'))))
     .sort();
 }
 
-/** Scenes with meshes: the renderer cannot trace those yet (issue 11), so the benchmark leaves them out until it can. */
-function needsAssetFiles(scene: Scene): boolean {
-  return scene.meshes.length > 0;
-}
+
 
 function loadReference(name: string): LinearImage {
   const pfm = decodePfm(readFileSync(new URL(`references/${name}.pfm`, FIXTURES)));
@@ -196,10 +193,15 @@ function benchMitsuba(
   seed: number,
   dir: string,
   sceneFile: string,
+  assets: SceneAssets,
 ): RendererRun & { cpuSeconds: number[] } {
   const xml = path.join(dir, 'scene.xml');
   const environmentMapPath = (map: string) => path.resolve(path.dirname(sceneFile), map);
-  writeFileSync(xml, toMitsubaXml(scene, { ...size, seed, environmentMapPath }));
+  const meshPath = (i: number) => path.join(dir, `mesh${i}.ply`);
+  const meshData = (i: number) => assets.meshes.get(scene.meshes[i].file)!;
+  scene.meshes.forEach((mesh, i) => writeFileSync(meshPath(i), meshPlyFile(mesh, meshData(i))));
+  const meshSmooth = (i: number) => meshData(i).normals !== null;
+  writeFileSync(xml, toMitsubaXml(scene, { ...size, seed, environmentMapPath, meshPath, meshSmooth }));
   const script = new URL('bench/mitsuba/render.py', projectRoot()).pathname;
   const checkpoints: Checkpoint[] = [];
   const cpuSeconds: number[] = [];
@@ -237,7 +239,7 @@ export async function runBench(options: BenchOptions = {}): Promise<BenchResult>
     for (const name of scenes) {
       const sceneFile = fileURLToPath(new URL(`scenes/${name}.json`, FIXTURES));
       const scene = parseSceneText(readFileSync(sceneFile, 'utf8'));
-      const { files } = await readSceneFiles(scene, sceneFile);
+      const { files, assets } = await readSceneFiles(scene, sceneFile);
       const reference = loadReference(name);
       const size = { width: reference.width * scale, height: reference.height * scale };
       const score = (image: LinearImage) => relativeMse(downsample(image, scale), reference);
@@ -250,7 +252,7 @@ export async function runBench(options: BenchOptions = {}): Promise<BenchResult>
       }
       if (mitsubaVersion) {
         log(`${name}: Mitsuba...`);
-        const mitsuba = benchMitsuba(scene, size, score, times, target, seed, dir, sceneFile);
+        const mitsuba = benchMitsuba(scene, size, score, times, target, seed, dir, sceneFile, assets);
         for (const row of sceneRows) {
           row.mitsuba = mitsuba;
           row.ratio = row.ours.checkpoints.map((c, i) => c.relMse / mitsuba.checkpoints[i].relMse);

@@ -2,12 +2,13 @@
  * `pathtrace export-mitsuba SCENE.json [-o OUT.xml]`: the scene as a Mitsuba 3
  * XML document, on stdout or written atomically to OUT.xml.
  */
-import { toMitsubaXml, type MitsubaExportOptions } from '../scene/mitsuba';
+import { dirname, resolve } from 'node:path';
+import { meshPlyFile, toMitsubaXml, type MitsubaExportOptions } from '../scene/mitsuba';
 import { MAX_IMAGE_SIZE } from '../scene/limits';
 import { MAX_SEED, MAX_SPP, parseInteger, parsePositiveInteger, resolveSize } from './args';
 import { usageError } from './errors';
 import { checkWritable, writeFileAtomic } from './output';
-import { loadSceneFile, type TextSink } from './validate';
+import { loadSceneFile, loadSceneFiles, type TextSink } from './validate';
 
 export interface RawExportOptions {
   output?: string;
@@ -47,6 +48,13 @@ export async function exportMitsubaCommand(file: string, raw: RawExportOptions, 
   if (options.width !== undefined || options.height !== undefined) {
     Object.assign(exportOptions, resolveSize(scene.image, options));
   }
+  const { assets } = await loadSceneFiles(file, scene);
+  const base = raw.output === undefined ? 'scene' : raw.output.replace(/\.xml$/i, '');
+  const meshFiles = scene.meshes.map((mesh, i) => ({ path: `${base}-mesh${i}.ply`, data: meshPlyFile(mesh, assets.meshes.get(mesh.file)!) }));
+  exportOptions.environmentMapPath = (map) => resolve(dirname(file), map);
+  exportOptions.meshPath = (i) => resolve(meshFiles[i].path);
+  exportOptions.meshSmooth = (i) => assets.meshes.get(scene.meshes[i].file)!.normals !== null;
+  for (const mesh of meshFiles) await writeFileAtomic(mesh.path, mesh.data);
   const xml = toMitsubaXml(scene, exportOptions);
   const text = xml.endsWith('\n') ? xml : `${xml}\n`;
   if (raw.output === undefined) {

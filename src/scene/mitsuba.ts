@@ -27,6 +27,10 @@
  * - emission: an `area` emitter on the shape.
  * - environment map: `envmap` with scale = intensity, rotated about +y; the
  *   file name as `environmentMapPath` gives it (default: as in the scene).
+ * - meshes: a `ply` shape per mesh whose file `meshPath(i)` names: the
+ *   caller writes it with `meshPlyFile` (world-space triangles, vertex
+ *   normals when smooth; `face_normals` when flat, since Mitsuba would
+ *   otherwise smooth them). Standard materials on meshes are `twosided`.
  * - lights: `sphere` with an `area` emitter (one-sided, emitting along the
  *   outward normal: the format's "all outward directions") and a black
  *   `diffuse` BSDF (lights reflect nothing).
@@ -41,7 +45,9 @@
  * - environment: `constant` emitter, omitted when null or black.
  */
 import { cameraFrame } from './camera';
-import type { Camera, DielectricMaterial, Material, Scene, StandardMaterial, Vec3 } from './types';
+import { encodePly } from './mesh/plyEncode';
+import { transformMesh } from './mesh/transform';
+import type { Camera, DielectricMaterial, Material, Mesh, Scene, StandardMaterial, TriangleMesh, Vec3 } from './types';
 
 export interface MitsubaExportOptions {
   /** Samples per pixel written into the sampler (default 256). */
@@ -53,6 +59,15 @@ export interface MitsubaExportOptions {
   seed?: number;
   /** The file name to write for `environment.map` (e.g. resolved against the scene file). Default: as written. */
   environmentMapPath?: (map: string) => string;
+  /** The PLY file written for meshes[i] (see meshPlyFile). Required when the scene has meshes. */
+  meshPath?: (index: number) => string;
+  /** Whether meshes[i]'s file gives vertex normals (smooth); flat meshes get `face_normals`. Default: smooth. */
+  meshSmooth?: (index: number) => boolean;
+}
+
+/** The PLY bytes the export of meshes[i] refers to: its triangles in world space (`data` is the decoded file). */
+export function meshPlyFile(mesh: Mesh, data: TriangleMesh): Uint8Array {
+  return encodePly(transformMesh(data, mesh));
 }
 
 /** Side of the square that stands in for the infinite ground plane. */
@@ -274,6 +289,18 @@ export function toMitsubaXml(scene: Scene, opts: MitsubaExportOptions = {}): str
       ]),
     );
   }
+  scene.meshes.forEach((mesh, i) => {
+    if (!opts.meshPath) throw new Error('toMitsubaXml: the scene has meshes; pass meshPath and write meshPlyFile for each');
+    const bsdf = materialBsdf(mesh.material);
+    children.push(
+      el('shape', { type: 'ply' }, [
+        str('filename', opts.meshPath(i)),
+        el('boolean', { name: 'face_normals', value: String(!(opts.meshSmooth?.(i) ?? true)) }),
+        mesh.material.type === 'standard' ? el('bsdf', { type: 'twosided' }, [bsdf]) : bsdf,
+        ...areaEmitter(mesh.material),
+      ]),
+    );
+  });
 
   const out = ['<?xml version="1.0" encoding="utf-8"?>', `<!-- Exported by pathtrace from scene format version ${scene.version}. -->`];
   serialize(el('scene', { version: '3.0.0' }, children), 0, out);
