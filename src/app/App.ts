@@ -4,12 +4,14 @@
  * (no shader recompile); each finished edit records the scene before it.
  */
 import { PathTracer } from '../render/PathTracer';
+import { SnapshotKeeper } from '../render/snapshot';
 import { MAX_LIGHTS, MAX_SPHERES } from '../scene/limits';
 import { cameraRay } from '../scene/camera';
 import { pickObject, pickSurface, projectSphere, type ObjectHit, type ObjectKind } from '../scene/picking';
 import type { Camera, Scene, Vec3 } from '../scene/types';
 import { History } from './history';
 import { RenderLoop, type RenderStats, type ViewSettings } from './renderLoop';
+import type { SavedState } from './savedState';
 
 export interface Selection {
   kind: ObjectKind;
@@ -32,6 +34,8 @@ export class App {
   readonly view: ViewSettings = { exposure: 0, toneMap: 'aces', paused: false, targetSpp: 0 };
   readonly tracer: PathTracer;
   readonly loop: RenderLoop;
+  /** A recent copy of the running sums: a lost context resumes from it. */
+  readonly snapshots: SnapshotKeeper;
   /** The camera to return to with "reset view": the loaded scene's. */
   private homeCamera: Camera;
   private editBefore: Scene | null = null;
@@ -48,7 +52,28 @@ export class App {
     this.scene = clone(scene);
     this.homeCamera = structuredClone(scene.camera);
     this.tracer = new PathTracer(canvas, this.scene, { width: 64, height: 48 });
-    this.loop = new RenderLoop(this.tracer, this.view, () => this.applyResolution(), onStats);
+    this.snapshots = new SnapshotKeeper(this.tracer);
+    const beforeFrame = () => {
+      this.applyResolution();
+      this.snapshots.tick();
+    };
+    this.loop = new RenderLoop(this.tracer, this.view, beforeFrame, onStats);
+  }
+
+  /** The camera "reset view" goes back to. */
+  get homeView(): Camera {
+    return this.homeCamera;
+  }
+
+  /** Puts back an autosaved state: scene, home camera, view settings and undo history. */
+  restore(state: SavedState): void {
+    this.endEdit();
+    this.homeCamera = structuredClone(state.homeCamera);
+    Object.assign(this.view, state.view);
+    this.history.replace(state.undo.map(clone), state.redo.map(clone));
+    this.replaceScene(clone(state.scene));
+    this.loop.invalidateDisplay();
+    this.layout();
   }
 
   /** Called after every change of the scene or the selection (panel, overlay, buttons). */
@@ -108,7 +133,8 @@ export class App {
   /** Loads a new scene (file, example, link): an undoable edit that also resets the home view. */
   load(scene: Scene): void {
     this.endEdit();
-    this.history.record(clone(this.scene));
+    // Loading the scene already open (a reloaded link) adds no undo step.
+    if (JSON.stringify(scene) !== JSON.stringify(this.scene)) this.history.record(clone(this.scene));
     this.homeCamera = structuredClone(scene.camera);
     this.replaceScene(clone(scene));
     this.layout();
