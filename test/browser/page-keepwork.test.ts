@@ -65,8 +65,8 @@ describe('the page keeps the work', () => {
   });
 
   it('a rejected scene file changes nothing: scene, selection, undo, render size, samples', async () => {
-    // No render-width cap: the render size follows the layout, as for a user.
-    const { page, errors } = await openPage(harness, { viewport: { width: 700, height: 460 }, maxWidth: 100_000, minSpp: 3 });
+    // No render-width cap and a short window: the render size follows the layout's height, as for a user.
+    const { page, errors } = await openPage(harness, { viewport: { width: 1000, height: 420 }, maxWidth: 100_000, minSpp: 3 });
     await page.click('#add-sphere'); // an undo step and a selection
     await waitForSpp(page, 3);
     const scene = await savedScene(page);
