@@ -4,6 +4,7 @@
  * (no shader recompile); each finished edit records the scene before it.
  */
 import { PathTracer } from '../render/PathTracer';
+import { NO_ASSETS, type SceneAssets } from '../scene/assets';
 import { SnapshotKeeper } from '../render/snapshot';
 import { MAX_LIGHTS, MAX_SPHERES } from '../scene/limits';
 import { cameraRay } from '../scene/camera';
@@ -34,6 +35,8 @@ export class App {
   readonly view: ViewSettings = { exposure: 0, toneMap: 'aces', paused: false, targetSpp: 0 };
   readonly tracer: PathTracer;
   readonly loop: RenderLoop;
+  /** Every map and model loaded this session (undo and redo may return to any scene that named one). */
+  assets: SceneAssets = NO_ASSETS;
   /** A recent copy of the running sums: a lost context resumes from it. */
   readonly snapshots: SnapshotKeeper;
   /** The camera to return to with "reset view": the loaded scene's. */
@@ -48,10 +51,12 @@ export class App {
     scene: Scene,
     private readonly maxWidth: number,
     onStats: (stats: RenderStats) => void,
+    assets: SceneAssets = NO_ASSETS,
   ) {
     this.scene = clone(scene);
+    this.assets = assets;
     this.homeCamera = structuredClone(scene.camera);
-    this.tracer = new PathTracer(canvas, this.scene, { width: 64, height: 48 });
+    this.tracer = new PathTracer(canvas, this.scene, { width: 64, height: 48, assets });
     this.snapshots = new SnapshotKeeper(this.tracer);
     const beforeFrame = () => {
       this.applyResolution();
@@ -131,8 +136,9 @@ export class App {
   }
 
   /** Loads a new scene (file, example, link): an undoable edit that also resets the home view. */
-  load(scene: Scene): void {
+  load(scene: Scene, assets: SceneAssets = NO_ASSETS): void {
     this.endEdit();
+    this.addAssets(assets);
     // Loading the scene already open (a reloaded link) adds no undo step.
     if (JSON.stringify(scene) !== JSON.stringify(this.scene)) this.history.record(clone(this.scene));
     this.homeCamera = structuredClone(scene.camera);
@@ -268,7 +274,16 @@ export class App {
     this.changed();
   }
 
+  /** Adds decoded files (maps, models) to those the scenes of this session may use. */
+  addAssets(assets: SceneAssets): void {
+    if (!assets.maps.size && !assets.meshes.size) return;
+    this.assets = {
+      maps: new Map([...this.assets.maps, ...assets.maps]),
+      meshes: new Map([...this.assets.meshes, ...assets.meshes]),
+    };
+  }
+
   private upload(): void {
-    this.tracer.setScene(this.scene);
+    this.tracer.setScene(this.scene, this.assets);
   }
 }

@@ -39,7 +39,7 @@ async function start(): Promise<void> {
   performance.mark('state-read');
   let app: App;
   try {
-    app = new App(canvas, startState.saved?.scene ?? defaultScene(), maxRenderWidth(), showStats);
+    app = new App(canvas, startState.saved?.scene ?? defaultScene(), maxRenderWidth(), showStats, startState.assets);
   } catch (error) {
     if (error instanceof WebGLUnavailableError) {
       showFatal('WebGL2 is not available', `${error.message} Try a current Chrome, Edge, Firefox or Safari with hardware acceleration on.`);
@@ -75,16 +75,22 @@ function openStartState(app: App, autosave: Autosave, start: StartState): SceneL
     autosave.assets = start.saved.assets;
   }
   autosave.linkDigest = start.linkDigest;
-  if (start.linkScene) app.load(start.linkScene);
-  if (start.linkResult && !start.linkResult.ok) showIssues('The scene in this link', start.linkResult.issues);
-  if (start.notices.length) notify(start.notices.join(' '), 8000);
-  return new SceneLoader(
-    (scene) => {
+  const loader = new SceneLoader(
+    (scene, assets, files) => {
       clearError();
-      app.load(scene);
+      app.load(scene, assets);
+      if (files.size) void autosave.keepFiles(scene, files);
     },
     showIssues,
+    () => app.assets,
   );
+  if (start.linkScene) {
+    const scene = start.linkScene;
+    void loader.open('The scene in this link', () => ({ ok: true, scene }));
+  }
+  if (start.linkResult && !start.linkResult.ok) showIssues('The scene in this link', start.linkResult.issues);
+  if (start.notices.length) notify(start.notices.join(' '), 8000);
+  return loader;
 }
 
 function showSaveStatus(status: SaveStatus, detail: string): void {
@@ -148,14 +154,25 @@ function wireToolbar(app: App, loader: SceneLoader): void {
 // ---------------------------------------------------------------- files
 
 function wireFiles(app: App, autosave: Autosave, loader: SceneLoader): void {
-  const openFile = (file: File) => loader.open(`"${file.name}"`, () => readSceneFile(file));
+  // A scene file with the maps and models it names, opened or dropped together.
+  const openFiles = (list: Iterable<File> | undefined | null) => {
+    const files = [...(list ?? [])];
+    if (!files.length) return;
+    const scene = files.find((f) => /\.json$/i.test(f.name)) ?? (files.length === 1 ? files[0] : undefined);
+    if (!scene) {
+      showIssues('These files', [{ path: '', message: 'none of them is a scene (.json): open the scene file together with its maps and models' }]);
+      return;
+    }
+    const companions = new Map(files.filter((f) => f !== scene).map((f) => [f.name, f] as const));
+    void loader.open(`"${scene.name}"`, () => readSceneFile(scene), companions);
+  };
 
   const input = $<HTMLInputElement>('file');
   $('open').addEventListener('click', () => input.click());
   input.addEventListener('change', () => {
-    const file = input.files?.[0];
+    const files = [...(input.files ?? [])];
     input.value = '';
-    if (file) void openFile(file);
+    openFiles(files);
   });
 
   const hint = $('drop-hint');
@@ -170,8 +187,7 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader): void {
   window.addEventListener('drop', (event) => {
     event.preventDefault();
     hint.hidden = true;
-    const file = event.dataTransfer?.files[0];
-    if (file) void openFile(file);
+    openFiles(event.dataTransfer?.files);
   });
 
   const examples = $<HTMLSelectElement>('examples');

@@ -9,11 +9,14 @@
  * saved again with it). Reloading the same link keeps the edits made since.
  * A saved state that cannot be trusted is discarded with a notice.
  */
+import { assetReferences, NO_ASSETS, type SceneAssets } from '../scene/assets';
+import { formatIssue } from '../scene/schema';
 import type { Scene } from '../scene/types';
 import type { App } from './App';
 import { sceneFromHash } from './files';
 import { decodeState, encodeState, linkDigest, type SavedState } from './savedState';
-import { deleteState, readState, writeState } from './store';
+import { baseName, resolveAssets, type CompanionFiles } from './sceneLoader';
+import { deleteState, loadAsset, pruneAssets, readState, saveAsset, writeState } from './store';
 import type { SafeParseResult } from '../scene/schema';
 
 /** Quiet time after the last change before saving. */
@@ -98,6 +101,28 @@ export class Autosave {
     this.setStatus('saved', droppedSteps > 0 ? `saved (the oldest ${droppedSteps} undo steps did not fit)` : 'saved');
   }
 
+  /**
+   * Keeps the user's files a just-opened scene names (by file name), so the
+   * scene reopens after a reload. A file that cannot be kept (too large,
+   * storage full) is listed in `unsaved`: leaving the page then asks first.
+   */
+  async keepFiles(scene: Scene, files: CompanionFiles): Promise<void> {
+    for (const ref of assetReferences(scene)) {
+      const name = baseName(ref.file);
+      const blob = files.get(ref.file) ?? files.get(name);
+      if (!blob) continue; // already kept with an earlier scene
+      const saved = await saveAsset(name, blob);
+      if (saved.ok) {
+        this.unsaved.delete(name);
+        if (!this.assets.includes(name)) this.assets = [...this.assets, name];
+      } else {
+        this.unsaved.set(name, saved.reason);
+      }
+    }
+    if (this.unsaved.size) this.setStatus(this.status, `not kept: ${[...this.unsaved.values()].join('; ')}`);
+    this.schedule();
+  }
+
   private currentState(): SavedState {
     const app = this.app;
     const { undo, redo } = app.history.entries();
@@ -121,6 +146,8 @@ export interface StartState {
   linkDigest: string | null;
   /** The link's scene was rejected: its issues (the saved or default scene opens). */
   linkResult: SafeParseResult | null;
+  /** The decoded files the saved scenes name. */
+  assets: SceneAssets;
   /** Messages for the user (restored, discarded, recovered...). */
   notices: string[];
 }
@@ -142,16 +169,65 @@ export async function readStartState(hash: string): Promise<StartState> {
       await deleteState();
     }
   }
+  let assets: SceneAssets = NO_ASSETS;
+  if (saved) {
+    const restored = await restoreFiles(saved);
+    if (restored.ok) {
+      assets = restored.assets;
+      notices.push(...restored.notes);
+    } else {
+      notices.push(`The saved scene was discarded because ${restored.reason}; the example scene is open instead.`);
+      saved = null;
+    }
+  }
   const link = sceneFromHash(hash);
   const digest = link ? linkDigest(hash) : null;
   if (link?.ok && saved && saved.linkDigest === digest) {
     // Reloading the link this work started from: keep the edits made since.
-    return { saved, linkScene: null, linkDigest: digest, linkResult: null, notices };
+    return { saved, linkScene: null, linkDigest: digest, linkResult: null, assets, notices };
   }
   if (link?.ok) {
     if (saved) notices.push('Opened the scene in the link; your previous scene is one Undo away.');
-    return { saved, linkScene: link.scene, linkDigest: digest, linkResult: null, notices };
+    return { saved, linkScene: link.scene, linkDigest: digest, linkResult: null, assets, notices };
   }
   if (saved && !notices.length) notices.push('Restored your last scene.');
-  return { saved, linkScene: null, linkDigest: saved?.linkDigest ?? null, linkResult: link, notices };
+  return { saved, linkScene: null, linkDigest: saved?.linkDigest ?? null, linkResult: link, assets, notices };
+}
+
+/**
+ * Decodes the stored files the saved scene and its history name. The scene
+ * needs all of its files; a history step whose files are gone is dropped.
+ */
+async function restoreFiles(
+  saved: SavedState,
+): Promise<{ ok: true; assets: SceneAssets; notes: string[] } | { ok: false; reason: string }> {
+  const files = new Map<string, Blob>();
+  for (const name of saved.assets) {
+    const blob = await loadAsset(name);
+    if (blob.ok && blob.value) files.set(name, blob.value);
+  }
+  const scene = await resolveAssets(saved.scene, files);
+  if (!scene.ok) return { ok: false, reason: `a file it names is not kept (${scene.issues.slice(0, 3).map(formatIssue).join('; ')})` };
+  let assets = scene.assets;
+  let dropped = 0;
+  const usable = async (list: Scene[]) => {
+    const out: Scene[] = [];
+    for (const step of list) {
+      const result = await resolveAssets(step, files, assets);
+      if (result.ok) {
+        assets = result.assets.maps.size + result.assets.meshes.size ? merge(assets, result.assets) : assets;
+        out.push(step);
+      } else dropped++;
+    }
+    return out;
+  };
+  saved.undo = await usable(saved.undo);
+  saved.redo = await usable(saved.redo);
+  void pruneAssets(saved.assets);
+  const notes = dropped ? [`Restored your last scene, but ${dropped} undo steps named files that are no longer kept.`] : [];
+  return { ok: true, assets, notes };
+}
+
+function merge(a: SceneAssets, b: SceneAssets): SceneAssets {
+  return { maps: new Map([...a.maps, ...b.maps]), meshes: new Map([...a.meshes, ...b.meshes]) };
 }

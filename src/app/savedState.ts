@@ -6,7 +6,7 @@
  * reported (`reason`) and the caller discards it.
  */
 import { z } from 'zod';
-import { TONEMAPS, type ToneMap } from '../render/layout';
+import { TONEMAPS, type ToneMap } from '../render/toneMaps';
 import { formatIssue, safeParseScene } from '../scene/schema';
 import { serializeScene } from '../scene/serialize';
 import type { Camera, Scene } from '../scene/types';

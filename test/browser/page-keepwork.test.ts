@@ -29,6 +29,7 @@ import {
   type PageHarness,
 } from '../support/page';
 
+const fixtureBytes = (path: string) => readFileSync(new URL(`../fixtures/${path}`, import.meta.url));
 const fixtureText = (name: string) => readFileSync(new URL(`../fixtures/scenes/${name}.json`, import.meta.url), 'utf8');
 const defaultJson = serializeScene(defaultScene());
 const renderState = (page: Page) => page.evaluate(() => document.body.dataset.render);
@@ -96,6 +97,59 @@ describe('the page keeps the work', () => {
     expect(meanAbsDifference(image.rgba, (await canvasPixels(page)).rgba)).toBe(0);
     await page.keyboard.press('Control+z');
     expect(await savedScene(page), 'undo still undoes the added sphere').toEqual(defaultJson);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  const assetFailures: [string, string, { name: string; buffer: Buffer }[], RegExp][] = [
+    ['a map that does not decode', 'envmap', [{ name: 'sunset.hdr', buffer: Buffer.from('#?RADIANCE\nnot really\n') }], /environment\.map: "\.\.\/envmaps\/sunset\.hdr"/],
+    ['a map not opened with the scene', 'envmap', [], /environment\.map: .*not opened/],
+    ['a model that does not decode', 'bunny', [
+      { name: 'bunny.ply', buffer: Buffer.from('ply\nformat ascii 1.0\nelement vertex 3\nend_header\n1 2\n') },
+      { name: 'gem.obj', buffer: fixtureBytes('meshes/gem.obj') },
+    ], /meshes\[0\]\.file: "\.\.\/meshes\/bunny\.ply"/],
+  ];
+  for (const [what, sceneName, files, issue] of assetFailures) {
+    it(`a scene with ${what} is rejected and changes nothing`, async () => {
+      const { page, errors } = await openPage(harness, { minSpp: 3 });
+      await page.click('#add-sphere');
+      const scene = await savedScene(page);
+      const before = await spp(page);
+      const minimum = await watchSppMinimum(page);
+      await page.setInputFiles('#file', [
+        { name: `${sceneName}.json`, mimeType: 'application/json', buffer: Buffer.from(fixtureText(sceneName)) },
+        ...files.map((f) => ({ ...f, mimeType: 'application/octet-stream' })),
+      ]);
+      await page.getByTestId('error').waitFor({ state: 'visible' });
+      expect(await page.getByTestId('error').textContent()).toMatch(issue);
+      await waitForSpp(page, before + 2);
+      expect(await minimum()).toBeGreaterThanOrEqual(before);
+      expect(await savedScene(page)).toEqual(scene);
+      expect(await page.locator('#delete').isDisabled(), 'the selection is kept').toBe(false);
+      expect(errors).toEqual([]);
+      await page.close();
+    });
+  }
+
+  it('opens a scene with its map, keeps the map with the autosave, and reopens both after a reload', async () => {
+    const { page, errors } = await openPage(harness);
+    const envmap = serializeScene(parseSceneText(fixtureText('envmap')));
+    await page.setInputFiles('#file', [
+      { name: 'envmap.json', mimeType: 'application/json', buffer: Buffer.from(fixtureText('envmap')) },
+      { name: 'sunset.hdr', mimeType: 'application/octet-stream', buffer: fixtureBytes('envmaps/sunset.hdr') },
+    ]);
+    await expect.poll(() => savedScene(page), { timeout: 30_000 }).toEqual(envmap);
+    await page.click('#add-sphere');
+    const edited = await savedScene(page);
+    await waitSaved(page);
+    await page.reload();
+    await waitForSpp(page, 2);
+    expect(await savedScene(page)).toEqual(edited);
+    expect(await page.getByTestId('notice').textContent()).not.toContain('discarded');
+    await page.keyboard.press('Control+z');
+    expect(await savedScene(page)).toEqual(envmap);
+    await page.keyboard.press('Control+z');
+    expect(await savedScene(page)).toEqual(defaultJson);
     expect(errors).toEqual([]);
     await page.close();
   });
