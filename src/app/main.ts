@@ -263,6 +263,9 @@ function wireContextLoss(app: App): void {
       if (app.tracer.contextLost && app.tracer.gl.isContextLost()) loseContext?.restoreContext();
     }, 1000);
   });
+  document.addEventListener('visibilitychange', () => {
+    if (document.visibilityState === 'hidden') app.snapshots.captureNow();
+  });
   app.tracer.on('contextrestored', () => {
     // The snapshot keeper (created with the App, so called first) has put back what it kept.
     const kept = app.tracer.sampleCount;

@@ -71,6 +71,25 @@ export class SnapshotKeeper {
     this.lastStart = now;
   }
 
+  /**
+   * Takes a snapshot now, reading back synchronously: for when the page is
+   * being hidden (a background tab is where contexts get reclaimed, and no
+   * later frame would collect an asynchronous read-back).
+   */
+  captureNow(): void {
+    const state = this.tracer.accumulation();
+    if (!state || state.samples === 0 || (this.latest?.samples === state.samples && this.latest.generation === state.generation)) return;
+    const gl = this.tracer.gl;
+    this.drop();
+    const sums = new Float32Array(state.width * state.height * 4);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, state.framebuffer);
+    gl.readPixels(0, 0, state.width, state.height, gl.RGBA, gl.FLOAT, sums);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    const { samples, generation, width, height } = state;
+    this.latest = { sums, samples, generation, width, height };
+    this.lastStart = performance.now();
+  }
+
   dispose(): void {
     this.unsubscribe.forEach((off) => off());
     this.drop();

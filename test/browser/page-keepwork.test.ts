@@ -317,6 +317,18 @@ describe('the page keeps the work', () => {
     const resumed = await spp(page);
     expect(resumed).toBeGreaterThanOrEqual(earlier);
     expect(await renderState(page)).toBe('rendering');
+
+    // Hidden (a background tab, where contexts get reclaimed): a snapshot is taken at once.
+    await waitForSpp(page, resumed + 4);
+    const atHide = await page.evaluate(() => {
+      Object.defineProperty(document, 'visibilityState', { configurable: true, get: () => 'hidden' });
+      document.dispatchEvent(new Event('visibilitychange'));
+      return Number(document.querySelector('[data-testid="spp"]')!.textContent);
+    });
+    await loseContext();
+    await page.waitForFunction(() => document.body.dataset.render === 'lost');
+    await page.waitForFunction(() => document.body.dataset.render === 'rendering', undefined, { timeout: 30_000 });
+    expect(await spp(page)).toBeGreaterThanOrEqual(atHide);
     expect(errors).toEqual([]);
     await page.close();
   });
