@@ -7,6 +7,7 @@
  */
 import { formatTable, runBench, type BenchOptions } from './run';
 import { writeResult } from './common';
+import { formatFirstPixel, runFirstPixel } from './first-pixel';
 
 function parse(argv: string[]): { options: BenchOptions; save: boolean; json: boolean } {
   const options: BenchOptions = { log: (line) => console.error(line) };
@@ -42,11 +43,17 @@ function parse(argv: string[]): { options: BenchOptions; save: boolean; json: bo
   return { options, save, json };
 }
 
+const times = (options: BenchOptions) => Math.max(0, ...(options.times ?? [Infinity]));
+
 async function main(): Promise<void> {
   const { options, save, json } = parse(process.argv.slice(2));
-  const result = await runBench(options);
+  const bench = await runBench(options);
+  // The page's time to first pixel (load -> first rendered frame), a fresh browser per run.
+  const firstPixel = await runFirstPixel(times(options) <= 0.5 ? 1 : 3, options.log);
+  const result = { ...bench, firstPixel };
   console.log(`${result.renderer} | ${result.machine.browser} | ${result.machine.cpu} x${result.machine.cores} | rev ${result.revision}${result.mitsubaVersion ? ` | Mitsuba ${result.mitsubaVersion} scalar_rgb` : ''}`);
   console.log(formatTable(result));
+  console.log(formatFirstPixel(firstPixel));
   if (json) console.log(JSON.stringify(result));
   if (save) console.log(`saved ${writeResult('bench', result)}`);
 }

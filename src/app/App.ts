@@ -4,12 +4,15 @@
  * (no shader recompile); each finished edit records the scene before it.
  */
 import { PathTracer } from '../render/PathTracer';
+import { NO_ASSETS, type SceneAssets } from '../scene/assets';
+import { SnapshotKeeper } from '../render/snapshot';
 import { MAX_LIGHTS, MAX_SPHERES } from '../scene/limits';
 import { cameraRay } from '../scene/camera';
 import { pickObject, pickSurface, projectSphere, type ObjectHit, type ObjectKind } from '../scene/picking';
 import type { Camera, Scene, Vec3 } from '../scene/types';
 import { History } from './history';
 import { RenderLoop, type RenderStats, type ViewSettings } from './renderLoop';
+import type { SavedState } from './savedState';
 
 export interface Selection {
   kind: ObjectKind;
@@ -32,6 +35,10 @@ export class App {
   readonly view: ViewSettings = { exposure: 0, toneMap: 'aces', paused: false, targetSpp: 0 };
   readonly tracer: PathTracer;
   readonly loop: RenderLoop;
+  /** Every map and model loaded this session (undo and redo may return to any scene that named one). */
+  assets: SceneAssets = NO_ASSETS;
+  /** A recent copy of the running sums: a lost context resumes from it. */
+  readonly snapshots: SnapshotKeeper;
   /** The camera to return to with "reset view": the loaded scene's. */
   private homeCamera: Camera;
   private editBefore: Scene | null = null;
@@ -44,11 +51,34 @@ export class App {
     scene: Scene,
     private readonly maxWidth: number,
     onStats: (stats: RenderStats) => void,
+    assets: SceneAssets = NO_ASSETS,
   ) {
     this.scene = clone(scene);
+    this.assets = assets;
     this.homeCamera = structuredClone(scene.camera);
-    this.tracer = new PathTracer(canvas, this.scene, { width: 64, height: 48 });
-    this.loop = new RenderLoop(this.tracer, this.view, () => this.applyResolution(), onStats);
+    this.tracer = new PathTracer(canvas, this.scene, { width: 64, height: 48, assets });
+    this.snapshots = new SnapshotKeeper(this.tracer);
+    const beforeFrame = () => {
+      this.applyResolution();
+      this.snapshots.tick();
+    };
+    this.loop = new RenderLoop(this.tracer, this.view, beforeFrame, onStats);
+  }
+
+  /** The camera "reset view" goes back to. */
+  get homeView(): Camera {
+    return this.homeCamera;
+  }
+
+  /** Puts back an autosaved state: scene, home camera, view settings and undo history. */
+  restore(state: SavedState): void {
+    this.endEdit();
+    this.homeCamera = structuredClone(state.homeCamera);
+    Object.assign(this.view, state.view);
+    this.history.replace(state.undo.map(clone), state.redo.map(clone));
+    this.replaceScene(clone(state.scene));
+    this.loop.invalidateDisplay();
+    this.layout();
   }
 
   /** Called after every change of the scene or the selection (panel, overlay, buttons). */
@@ -106,9 +136,11 @@ export class App {
   }
 
   /** Loads a new scene (file, example, link): an undoable edit that also resets the home view. */
-  load(scene: Scene): void {
+  load(scene: Scene, assets: SceneAssets = NO_ASSETS): void {
     this.endEdit();
-    this.history.record(clone(this.scene));
+    this.addAssets(assets);
+    // Loading the scene already open (a reloaded link) adds no undo step.
+    if (JSON.stringify(scene) !== JSON.stringify(this.scene)) this.history.record(clone(this.scene));
     this.homeCamera = structuredClone(scene.camera);
     this.replaceScene(clone(scene));
     this.layout();
@@ -242,7 +274,16 @@ export class App {
     this.changed();
   }
 
+  /** Adds decoded files (maps, models) to those the scenes of this session may use. */
+  addAssets(assets: SceneAssets): void {
+    if (!assets.maps.size && !assets.meshes.size) return;
+    this.assets = {
+      maps: new Map([...this.assets.maps, ...assets.maps]),
+      meshes: new Map([...this.assets.meshes, ...assets.meshes]),
+    };
+  }
+
   private upload(): void {
-    this.tracer.setScene(this.scene);
+    this.tracer.setScene(this.scene, this.assets);
   }
 }

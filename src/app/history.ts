@@ -35,6 +35,17 @@ export class History<T> {
     return this.redoStack.length > 0;
   }
 
+  /** Both stacks, oldest first (to save them). */
+  entries(): { undo: T[]; redo: T[] } {
+    return { undo: [...this.undoStack], redo: [...this.redoStack] };
+  }
+
+  /** Replaces both stacks (oldest first), e.g. with saved ones; keeps the newest `limit` undo steps. */
+  replace(undo: T[], redo: T[]): void {
+    this.undoStack.splice(0, this.undoStack.length, ...undo.slice(-this.limit));
+    this.redoStack.splice(0, this.redoStack.length, ...redo.slice(-this.limit));
+  }
+
   clear(): void {
     this.undoStack.length = 0;
     this.redoStack.length = 0;

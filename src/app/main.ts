@@ -6,13 +6,16 @@
 import './style.css';
 import { ShaderCompileError } from '../render/gl/program';
 import { WebGLUnavailableError } from '../render/gl/context';
-import { formatIssue, parseScene, type SafeParseResult, type SceneIssue } from '../scene/schema';
+import { safeParseScene } from '../scene/schema';
 import { defaultScene, PRESET_NAMES, PRESETS } from '../scene/presets';
 import { stringifyScene } from '../scene/serialize';
-import type { Scene } from '../scene/types';
 import { App } from './App';
 import { downloadBlob, readSceneFile, rgba8ToPngBlob, sceneFromHash, shareHash } from './files';
 import { attachInput, attachKeys } from './input';
+import { clearError, notify, showError, showFatal, showIssues } from './messages';
+import { Autosave, readStartState, type SaveStatus, type StartState } from './persistence';
+import { linkDigest } from './savedState';
+import { SceneLoader } from './sceneLoader';
 import { Panel } from './panel';
 import { encodePfm } from '../image/pfm';
 import type { RenderStats } from './renderLoop';
@@ -20,88 +23,23 @@ import type { RenderStats } from './renderLoop';
 const $ = <T extends HTMLElement = HTMLElement>(id: string) => document.getElementById(id) as T;
 const SVG_NS = 'http://www.w3.org/2000/svg';
 
-// ---------------------------------------------------------------- messages
-
-const alertBox = $('error');
-
-function showError(title: string, lines: string[] = [], log?: string): void {
-  alertBox.replaceChildren();
-  const dismiss = document.createElement('button');
-  dismiss.className = 'dismiss';
-  dismiss.type = 'button';
-  dismiss.textContent = '×';
-  dismiss.setAttribute('aria-label', 'Dismiss');
-  dismiss.addEventListener('click', clearError);
-  const heading = document.createElement('strong');
-  heading.textContent = title;
-  alertBox.append(dismiss, heading);
-  if (lines.length) {
-    const list = document.createElement('ul');
-    for (const line of lines) {
-      const item = document.createElement('li');
-      item.textContent = line;
-      list.append(item);
-    }
-    alertBox.append(list);
-  }
-  if (log) {
-    const pre = document.createElement('pre');
-    pre.textContent = log;
-    alertBox.append(pre);
-  }
-  alertBox.hidden = false;
-}
-
-function clearError(): void {
-  alertBox.hidden = true;
-  alertBox.replaceChildren();
-}
-
-function showIssues(source: string, issues: SceneIssue[]): void {
-  showError(`${source} is not a valid scene; the current scene is kept.`, issues.map(formatIssue));
-}
-
-let noticeTimer = 0;
-function notify(text: string): void {
-  const notice = $('notice');
-  notice.textContent = text;
-  notice.hidden = false;
-  clearTimeout(noticeTimer);
-  noticeTimer = window.setTimeout(() => (notice.hidden = true), 4000);
-}
-
-function showFatal(title: string, detail: string, log?: string): void {
-  const area = $('viewport-area');
-  const box = document.createElement('div');
-  box.className = 'fatal';
-  const heading = document.createElement('h2');
-  heading.textContent = title;
-  const text = document.createElement('p');
-  text.textContent = detail;
-  box.append(heading, text);
-  area.replaceChildren(box);
-  showError(title, [detail], log);
-  document.body.dataset.state = 'failed';
-}
-
 // ---------------------------------------------------------------- start
 
-function initialScene(): Scene {
-  const fromLink = sceneFromHash(location.hash);
-  if (fromLink && !fromLink.ok) showIssues('The scene in this link', fromLink.issues);
-  return fromLink?.ok ? fromLink.scene : defaultScene();
-}
+const DEFAULT_VIEW = { exposure: 0, toneMap: 'aces', targetSpp: 0 } as const;
 
 function maxRenderWidth(): number {
   const value = Number(new URLSearchParams(location.search).get('maxwidth'));
   return Number.isFinite(value) && value >= 8 ? value : Infinity;
 }
 
-function start(): void {
+async function start(): Promise<void> {
   const canvas = $<HTMLCanvasElement>('viewport');
+  performance.mark('script-start');
+  const startState = await readStartState(location.hash);
+  performance.mark('state-read');
   let app: App;
   try {
-    app = new App(canvas, initialScene(), maxRenderWidth(), showStats);
+    app = new App(canvas, startState.saved?.scene ?? defaultScene(), maxRenderWidth(), showStats, startState.assets);
   } catch (error) {
     if (error instanceof WebGLUnavailableError) {
       showFatal('WebGL2 is not available', `${error.message} Try a current Chrome, Edge, Firefox or Safari with hardware acceleration on.`);
@@ -112,23 +50,66 @@ function start(): void {
     }
     return;
   }
+  performance.mark('renderer-ready');
   const panel = new Panel(app, $('panel'));
+  const autosave = new Autosave(app, showSaveStatus);
+  const loader = openStartState(app, autosave, startState);
   attachInput(app, canvas);
   attachKeys(app);
-  wireToolbar(app);
-  wireFiles(app);
+  wireToolbar(app, loader);
+  wireFiles(app, autosave, loader);
   wireContextLoss(app);
   wireOverlay(app);
   if (window.matchMedia('(max-width: 760px)').matches) panel.gui.close();
   new ResizeObserver(() => app.layout()).observe($('viewport-area'));
   app.layout();
   app.loop.start();
+  autosave.start();
   document.body.dataset.state = 'ready';
+}
+
+/** Restores the saved work, then opens the link's scene over it (one Undo brings the saved one back). */
+function openStartState(app: App, autosave: Autosave, start: StartState): SceneLoader {
+  if (start.saved) {
+    app.restore(start.saved);
+    autosave.assets = start.saved.assets;
+  }
+  autosave.linkDigest = start.linkDigest;
+  const loader = new SceneLoader(
+    (scene, assets, files) => {
+      clearError();
+      app.load(scene, assets);
+      if (files.size) void autosave.keepFiles(scene, files);
+    },
+    showIssues,
+    () => app.assets,
+  );
+  if (start.linkScene) {
+    const scene = start.linkScene;
+    void loader.open('The scene in this link', () => ({ ok: true, scene }));
+  }
+  if (start.linkResult && !start.linkResult.ok) showIssues('The scene in this link', start.linkResult.issues);
+  if (start.notices.length) notify(start.notices.join(' '), 8000);
+  return loader;
+}
+
+function showSaveStatus(status: SaveStatus, detail: string): void {
+  const element = $('saved');
+  element.textContent = status === 'pending' ? 'saving…' : status === 'idle' ? '' : detail;
+  element.title = status === 'failed' ? 'Your changes are not saved in this browser: save the scene as JSON to keep it.' : '';
+  element.classList.toggle('warn', status === 'failed');
+  document.body.dataset.saved = status;
 }
 
 // ---------------------------------------------------------------- statistics
 
+let firstPixelShown = false;
 function showStats(stats: RenderStats): void {
+  if (!firstPixelShown && stats.spp > 0) {
+    // Time to first pixel, from navigation start: the bench reads it (bench/first-pixel.ts).
+    firstPixelShown = true;
+    document.body.dataset.firstPixelMs = performance.mark('first-pixel').startTime.toFixed(0);
+  }
   $('spp').textContent = String(stats.spp);
   $('rate').textContent = `${stats.sppPerSecond.toFixed(stats.sppPerSecond < 10 ? 1 : 0)} spp/s`;
   $('elapsed').textContent = `${(stats.elapsedMs / 1000).toFixed(1)} s`;
@@ -139,8 +120,17 @@ function showStats(stats: RenderStats): void {
 
 // ---------------------------------------------------------------- toolbar
 
-function wireToolbar(app: App): void {
+function wireToolbar(app: App, loader: SceneLoader): void {
   const click = (id: string, action: () => void) => $(id).addEventListener('click', action);
+  click('new-scene', () => {
+    void loader.open('The example scene', () => ({ ok: true, scene: defaultScene() })).then((opened) => {
+      if (!opened) return;
+      Object.assign(app.view, DEFAULT_VIEW);
+      app.loop.invalidateDisplay();
+      app.changed();
+      notify('New scene: the example. Undo brings your previous scene back.');
+    });
+  });
   click('add-sphere', () => app.addSphere());
   click('add-light', () => app.addLight());
   click('delete', () => app.deleteSelection());
@@ -163,23 +153,26 @@ function wireToolbar(app: App): void {
 
 // ---------------------------------------------------------------- files
 
-function wireFiles(app: App): void {
-  const accept = (source: string, result: SafeParseResult) => {
-    if (!result.ok) {
-      showIssues(source, result.issues);
+function wireFiles(app: App, autosave: Autosave, loader: SceneLoader): void {
+  // A scene file with the maps and models it names, opened or dropped together.
+  const openFiles = (list: Iterable<File> | undefined | null) => {
+    const files = [...(list ?? [])];
+    if (!files.length) return;
+    const scene = files.find((f) => /\.json$/i.test(f.name)) ?? (files.length === 1 ? files[0] : undefined);
+    if (!scene) {
+      showIssues('These files', [{ path: '', message: 'none of them is a scene (.json): open the scene file together with its maps and models' }]);
       return;
     }
-    clearError();
-    app.load(result.scene);
+    const companions = new Map(files.filter((f) => f !== scene).map((f) => [f.name, f] as const));
+    void loader.open(`"${scene.name}"`, () => readSceneFile(scene), companions);
   };
-  const openFile = async (file: File) => accept(`"${file.name}"`, await readSceneFile(file));
 
   const input = $<HTMLInputElement>('file');
   $('open').addEventListener('click', () => input.click());
   input.addEventListener('change', () => {
-    const file = input.files?.[0];
+    const files = [...(input.files ?? [])];
     input.value = '';
-    if (file) void openFile(file);
+    openFiles(files);
   });
 
   const hint = $('drop-hint');
@@ -194,8 +187,7 @@ function wireFiles(app: App): void {
   window.addEventListener('drop', (event) => {
     event.preventDefault();
     hint.hidden = true;
-    const file = event.dataTransfer?.files[0];
-    if (file) void openFile(file);
+    openFiles(event.dataTransfer?.files);
   });
 
   const examples = $<HTMLSelectElement>('examples');
@@ -208,10 +200,7 @@ function wireFiles(app: App): void {
   examples.addEventListener('change', () => {
     const name = examples.value;
     examples.value = '';
-    if (name in PRESETS) {
-      clearError();
-      app.load(parseScene(PRESETS[name]));
-    }
+    if (name in PRESETS) void loader.open(`The example "${name}"`, () => safeParseScene(PRESETS[name]));
   });
 
   $('save-json').addEventListener('click', () => {
@@ -221,6 +210,8 @@ function wireFiles(app: App): void {
   $('share').addEventListener('click', () => {
     const hash = shareHash(app.scene);
     history.replaceState(null, '', hash);
+    autosave.linkDigest = linkDigest(hash); // reloading this address keeps later edits
+    autosave.schedule();
     const url = location.href;
     navigator.clipboard?.writeText(url).then(
       () => notify('Link copied: it carries the whole scene.'),
@@ -229,8 +220,12 @@ function wireFiles(app: App): void {
   });
 
   window.addEventListener('hashchange', () => {
-    const result = sceneFromHash(location.hash);
-    if (result) accept('The scene in this link', result);
+    const hash = location.hash;
+    const result = sceneFromHash(hash);
+    if (!result) return;
+    void loader.open('The scene in this link', () => result).then((opened) => {
+      if (opened) autosave.linkDigest = linkDigest(hash);
+    });
   });
 
   const whenRendering = (action: () => Promise<void> | void) => async () => {
@@ -268,8 +263,13 @@ function wireContextLoss(app: App): void {
       if (app.tracer.contextLost && app.tracer.gl.isContextLost()) loseContext?.restoreContext();
     }, 1000);
   });
+  document.addEventListener('visibilitychange', () => {
+    if (document.visibilityState === 'hidden') app.snapshots.captureNow();
+  });
   app.tracer.on('contextrestored', () => {
-    notify('The WebGL context was restored; rendering resumes.');
+    // The snapshot keeper (created with the App, so called first) has put back what it kept.
+    const kept = app.tracer.sampleCount;
+    notify(`The WebGL context was restored; ${kept > 0 ? `the image resumes from ${kept} spp` : 'rendering starts again'}.`);
     app.changed();
   });
 }
@@ -302,4 +302,4 @@ function wireOverlay(app: App): void {
   requestAnimationFrame(follow);
 }
 
-start();
+void start();

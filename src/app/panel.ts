@@ -174,9 +174,11 @@ export class Panel {
       set bounces(v: number) { app.live(() => (app.scene.render.maxBounces = v)); },
     }, 'bounces', 0, MAX_BOUNCES, 1).name('max bounces'));
     const redisplay = () => app.loop.invalidateDisplay();
-    folder.add(view, 'exposure', -6, 6, 0.1).name('exposure (stops)').onChange(redisplay);
-    folder.add(view, 'toneMap', [...TONEMAPS]).name('tone map').onChange(redisplay);
-    folder.add(view, 'targetSpp', 0, 100000, 1).name('stop at spp (0 = never)');
+    // View settings are not scene edits (no undo step) but are saved with it: announce them.
+    const saved = () => app.changed();
+    folder.add(view, 'exposure', -6, 6, 0.1).name('exposure (stops)').onChange(redisplay).onFinishChange(saved);
+    folder.add(view, 'toneMap', [...TONEMAPS]).name('tone map').onChange(redisplay).onFinishChange(saved);
+    folder.add(view, 'targetSpp', 0, 100000, 1).name('stop at spp (0 = never)').onFinishChange(saved);
     folder.add(view, 'paused').name('paused');
     folder.open();
   }

@@ -54,6 +54,8 @@ export class PathTracer {
   private readonly russianRoulette: boolean;
   private size: { width: number; height: number };
   private samples = 0;
+  /** Counts restarts of accumulation (scene, size, seed, reset); not a context loss. */
+  private generation = 0;
   private resources: Resources | null = null;
   private readonly listeners = new Map<string, Set<() => void>>();
 
@@ -137,6 +139,7 @@ export class PathTracer {
   /** Discards the accumulated samples. */
   reset(): void {
     this.samples = 0;
+    this.generation++;
     this.resources?.sums.clear();
   }
 
@@ -205,6 +208,35 @@ export class PathTracer {
     this.gl.bindFramebuffer(this.gl.FRAMEBUFFER, r.sums.read.framebuffer);
     this.gl.readPixels(0, 0, 1, 1, this.gl.RGBA, this.gl.FLOAT, pixel);
     this.gl.bindFramebuffer(this.gl.FRAMEBUFFER, null);
+  }
+
+  /**
+   * The running sums as they are now, for snapshots (render/snapshot.ts):
+   * null while the context is lost. `generation` changes whenever
+   * accumulation restarts (scene, size, seed), but not when the context is
+   * lost, so a snapshot can be put back after a restore.
+   */
+  accumulation(): { framebuffer: WebGLFramebuffer; width: number; height: number; samples: number; generation: number } | null {
+    const r = this.resources;
+    if (!r || this.gl.isContextLost()) return null;
+    return { framebuffer: r.sums.read.framebuffer, ...this.size, samples: this.samples, generation: this.generation };
+  }
+
+  /**
+   * Puts back running sums read earlier by `accumulation()` (RGBA32F, rows
+   * bottom to top, `samples` samples per pixel) if they belong to the current
+   * accumulation (same generation and size). Returns whether it did.
+   */
+  restoreAccumulation(sums: Float32Array, samples: number, generation: number, width: number, height: number): boolean {
+    const r = this.resources;
+    if (!r || this.gl.isContextLost() || generation !== this.generation) return false;
+    if (width !== this.size.width || height !== this.size.height || sums.length !== width * height * 4) return false;
+    const gl = this.gl;
+    gl.bindTexture(gl.TEXTURE_2D, r.sums.read.texture);
+    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RGBA, gl.FLOAT, sums);
+    gl.bindTexture(gl.TEXTURE_2D, null);
+    this.samples = samples;
+    return true;
   }
 
   /** 'contextlost' and 'contextrestored' notifications. */
