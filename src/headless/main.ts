@@ -12,6 +12,7 @@ import { createContext } from '../render/gl/context';
 import { Program, ShaderCompileError } from '../render/gl/program';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/passes/trace';
 import { layoutDefines } from '../render/layout';
+import { denoiseArrays, type DenoiseRequest, type DenoiseResult } from './denoise';
 
 export interface LoadOptions {
   width: number;
@@ -37,6 +38,8 @@ export interface HeadlessApi {
   runKernel(request: KernelRequest): string;
   /** Compiles `source` as a fragment-shader chunk named `name` after the common chunks; the error log, or null. */
   compileLog(name: string, source: string): string | null;
+  /** Denoises base64 float32 arrays handed in (src/headless/denoise.ts). */
+  denoise(request: DenoiseRequest): Promise<DenoiseResult>;
 }
 
 let tracer: PathTracer | null = null;
@@ -110,6 +113,7 @@ const api: HeadlessApi = {
       throw error;
     }
   },
+  denoise: denoiseArrays,
 };
 
 declare global {

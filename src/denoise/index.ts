@@ -1,0 +1,2 @@
+export { createDenoiser, DenoiseError, type Denoiser, type DenoiseInput, type DenoiserOptions } from './denoiser';
+export { WeightsError } from './tza';
