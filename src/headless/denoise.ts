@@ -58,7 +58,7 @@ export async function denoiseArrays(request: DenoiseRequest): Promise<DenoiseRes
   return { data: toBase64(data), milliseconds: end - start, setupMilliseconds: start - setupStart, backend: denoiser.backend };
 }
 
-function fromBase64(text: string): Float32Array {
+export function fromBase64(text: string): Float32Array {
   const binary = atob(text);
   const bytes = new Uint8Array(binary.length);
   for (let i = 0; i < binary.length; i++) bytes[i] = binary.charCodeAt(i);

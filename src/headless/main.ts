@@ -12,7 +12,8 @@ import { createContext } from '../render/gl/context';
 import { Program, ShaderCompileError } from '../render/gl/program';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/passes/trace';
 import { layoutDefines } from '../render/layout';
-import { denoiseArrays, type DenoiseRequest, type DenoiseResult } from './denoise';
+import { denoiseArrays, fromBase64, type DenoiseRequest, type DenoiseResult } from './denoise';
+import { displayLinear } from './displayLinear';
 
 export interface LoadOptions {
   width: number;
@@ -40,6 +41,15 @@ export interface HeadlessApi {
   compileLog(name: string, source: string): string | null;
   /** Denoises base64 float32 arrays handed in (src/headless/denoise.ts). */
   denoise(request: DenoiseRequest): Promise<DenoiseResult>;
+  /** The tracer's guides (albedo, normal: base64 float32 RGBA rows top to bottom); throws if this tracer has none. */
+  readAovs(): { albedo: string; normal: string };
+  /** A linear RGBA image (base64 float32) through the display pass: base64 RGBA8 sRGB. */
+  displayLinear(linear: string, width: number, height: number, options: DisplayOptions): string;
+}
+
+/** What the denoiser needs from the tracer (issue 12): guide buffers like readLinear(). */
+interface TracerWithAovs {
+  readAovs?(): { albedo: Float32Array; normal: Float32Array };
 }
 
 let tracer: PathTracer | null = null;
@@ -114,6 +124,18 @@ const api: HeadlessApi = {
     }
   },
   denoise: denoiseArrays,
+  readAovs() {
+    const t = requireTracer() as PathTracer & TracerWithAovs;
+    if (typeof t.readAovs !== 'function') {
+      throw new Error('readAovs: this PathTracer has no guide buffers (albedo/normal AOVs) yet, so it cannot denoise');
+    }
+    const { albedo, normal } = t.readAovs();
+    const encode = (f: Float32Array) => toBase64(new Uint8Array(f.buffer, f.byteOffset, f.byteLength));
+    return { albedo: encode(albedo), normal: encode(normal) };
+  },
+  displayLinear(linear, width, height, options) {
+    return toBase64(displayLinear(fromBase64(linear), width, height, options));
+  },
 };
 
 declare global {

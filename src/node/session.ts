@@ -84,6 +84,10 @@ export interface RenderSession {
   compileLog(name: string, source: string): Promise<string | null>;
   /** Denoises linear RGBA arrays (rows top to bottom) in the page with src/denoise. */
   denoise(input: DenoiseArrays, options?: DenoiseRequest['options']): Promise<DenoiseOutcome>;
+  /** The tracer's albedo and normal guides, RGBA float32 rows top to bottom (needs PathTracer.readAovs()). */
+  readAovs(): Promise<{ albedo: Float32Array; normal: Float32Array }>;
+  /** A linear RGBA image through the page's display pass, as readDisplayed() shows the tracer's. */
+  displayLinear(linear: Float32Array, width: number, height: number, options: { exposure: number; tonemap: string }): Promise<Uint8Array>;
 }
 
 export interface DenoiseArrays {
@@ -193,6 +197,15 @@ function createSession(page: Page, browser: Browser, server: StaticServer, pageE
       const request = { width, height, color: base64(input.color), albedo: base64(input.albedo), normal: base64(input.normal), options };
       const result = await call('denoise', request);
       return { ...result, data: toFloat32(result.data) };
+    },
+    async readAovs() {
+      const { albedo, normal } = await call('readAovs');
+      return { albedo: toFloat32(albedo), normal: toFloat32(normal) };
+    },
+    async displayLinear(linear, width, height, options) {
+      const toneMap = options.tonemap as DisplayOptions['toneMap'];
+      const encoded = Buffer.from(linear.buffer, linear.byteOffset, linear.byteLength).toString('base64');
+      return new Uint8Array(Buffer.from(await call('displayLinear', encoded, width, height, { exposure: options.exposure, toneMap }), 'base64'));
     },
     async close() {
       await browser.close();
