@@ -1,0 +1,59 @@
+/**
+ * The denoiser in the headless page (src/denoise on TensorFlow.js WASM):
+ * a 16 spp render of the seed scene with Mitsuba guides
+ * (test/fixtures/denoise, made by bench/denoise/fixtures.ts) comes out at
+ * least 5x closer to the reference, finite, and bit-identical on a second
+ * run; the display of a handed-in linear image is the tracer's own display;
+ * bad input and a tracer without guides give clear errors.
+ */
+import { readFileSync } from 'node:fs';
+import { describe, expect, it } from 'vitest';
+import { decodePfm } from '../../src/cli/pfm';
+import { relativeMse } from '../../src/node/imageMetrics';
+import { FIXTURES, loadFixtureScene, loadReference, renderLinear, useRenderSession } from '../support/browser';
+
+function guide(kind: 'albedo' | 'normal'): Float32Array {
+  const pfm = decodePfm(readFileSync(new URL(`denoise/seed-${kind}.pfm`, FIXTURES)));
+  const rgba = new Float32Array(pfm.width * pfm.height * 4);
+  for (let p = 0; p < pfm.width * pfm.height; p++) rgba.set(pfm.rgb.subarray(p * 3, p * 3 + 3), p * 4);
+  return rgba;
+}
+
+describe('denoiser', () => {
+  const session = useRenderSession();
+  const scene = loadFixtureScene('seed');
+  const { width, height } = scene.image;
+
+  it('makes the seed scene at 16 spp at least 5x closer to the reference, finite and deterministic', async () => {
+    const noisy = await renderLinear(session(), scene, 16, 1);
+    const input = { width, height, color: noisy.data, albedo: guide('albedo'), normal: guide('normal') };
+    const first = await session().denoise(input);
+    const second = await session().denoise(input);
+    expect(first.backend).toBe('wasm');
+    expect(first.data.every(Number.isFinite), 'finite output').toBe(true);
+    expect(Buffer.from(second.data.buffer).equals(Buffer.from(first.data.buffer)), 'deterministic').toBe(true);
+    const reference = loadReference('seed');
+    const before = relativeMse(noisy, reference);
+    const after = relativeMse({ width, height, channels: 4, data: first.data }, reference);
+    console.log(`seed 16 spp: relMSE ${before.toExponential(2)} -> ${after.toExponential(2)} in ${first.milliseconds.toFixed(0)} ms`);
+    expect(after * 5).toBeLessThan(before);
+  });
+
+  it('displays a handed-in linear image exactly as the tracer displays its own', async () => {
+    const linear = await renderLinear(session(), scene, 2, 3, { width: 32, height: 24 });
+    for (const tonemap of ['none', 'aces']) {
+      const options = { exposure: 0.5, tonemap };
+      const own = await session().readDisplayed(options);
+      const handed = await session().displayLinear(linear.data, 32, 24, options);
+      expect(Buffer.from(handed).equals(Buffer.from(own)), tonemap).toBe(true);
+    }
+  });
+
+  it('names the field of bad input, and says when the tracer has no guides', async () => {
+    const color = new Float32Array(8 * 6 * 4);
+    await expect(session().denoise({ width: 8, height: 6, color, albedo: new Float32Array(10), normal: color })).rejects.toThrow(/albedo: expected 192 values/);
+    await expect(session().denoise({ width: 8, height: 5, color, albedo: color, normal: color })).rejects.toThrow(/color: expected/);
+    await session().load(scene, { width: 8, height: 6, seed: 0 });
+    await expect(session().readAovs()).rejects.toThrow(/readAovs: this PathTracer has no guide buffers/);
+  });
+});
