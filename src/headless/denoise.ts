@@ -15,10 +15,14 @@ export interface DenoiseRequest {
   options?: Pick<DenoiserOptions, 'clampInput'> & {
     /** Base64 of other TZA weights (the benchmark compares OIDN's small network); default: the bundled file. */
     weights?: string;
+    /** Run in a dedicated worker (createDenoiserWorker), as the interactive page should. */
+    worker?: boolean;
   };
 }
 
 export interface DenoiseResult {
+  /** Longest gap between main-thread timer ticks during the call (ms): small when a worker does the work. */
+  longestMainThreadGap: number;
   /** Base64 of float32 RGBA rows, top to bottom. */
   data: string;
   /** Time of the denoise call alone (input processing, network, output). */
@@ -34,9 +38,9 @@ async function denoiserFor(options: DenoiseRequest['options'] = {}): Promise<Den
   const key = JSON.stringify(options);
   let denoiser = denoisers.get(key);
   if (!denoiser) {
-    const { createDenoiser } = await import('../denoise');
+    const { createDenoiser, createDenoiserWorker } = await import('../denoise');
     const weights = options.weights === undefined ? undefined : fromBase64(options.weights).buffer as ArrayBuffer;
-    denoiser = createDenoiser({ clampInput: options.clampInput, weights });
+    denoiser = (options.worker ? createDenoiserWorker : createDenoiser)({ clampInput: options.clampInput, weights });
     denoiser.catch(() => denoisers.delete(key));
     denoisers.set(key, denoiser);
   }
@@ -47,6 +51,7 @@ export async function denoiseArrays(request: DenoiseRequest): Promise<DenoiseRes
   const setupStart = performance.now();
   const denoiser = await denoiserFor(request.options);
   const start = performance.now();
+  const watch = watchMainThread();
   const data = await denoiser.denoise({
     width: request.width,
     height: request.height,
@@ -55,7 +60,8 @@ export async function denoiseArrays(request: DenoiseRequest): Promise<DenoiseRes
     normal: fromBase64(request.normal),
   });
   const end = performance.now();
-  return { data: toBase64(data), milliseconds: end - start, setupMilliseconds: start - setupStart, backend: denoiser.backend };
+  const longestMainThreadGap = watch.stop();
+  return { data: toBase64(data), milliseconds: end - start, setupMilliseconds: start - setupStart, backend: denoiser.backend, longestMainThreadGap };
 }
 
 export function fromBase64(text: string): Float32Array {
@@ -70,4 +76,21 @@ function toBase64(data: Float32Array): string {
   let binary = '';
   for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
   return btoa(binary);
+}
+
+/** Ticks a 10 ms timer and records the longest gap between ticks (a blocked main thread shows as a long gap). */
+function watchMainThread(): { stop(): number } {
+  let last = performance.now();
+  let longest = 0;
+  const timer = setInterval(() => {
+    const now = performance.now();
+    longest = Math.max(longest, now - last);
+    last = now;
+  }, 10);
+  return {
+    stop() {
+      clearInterval(timer);
+      return Math.max(longest, performance.now() - last);
+    },
+  };
 }

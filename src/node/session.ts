@@ -103,6 +103,7 @@ export interface DenoiseOutcome {
   milliseconds: number;
   setupMilliseconds: number;
   backend: string;
+  longestMainThreadGap: number;
 }
 
 /** The built page directory: dist/web next to the bundled CLI, or from the sources. */

@@ -39,6 +39,21 @@ describe('denoiser', () => {
     expect(after * 5).toBeLessThan(before);
   });
 
+  it('runs in a worker with the same bits, without blocking the main thread', async () => {
+    const noisy = await renderLinear(session(), scene, 4, 2, { width: 128, height: 96 });
+    const crop = (data: Float32Array) => {
+      const out = new Float32Array(128 * 96 * 4);
+      for (let y = 0; y < 96; y++) out.set(data.subarray(y * width * 4, (y * width + 128) * 4), y * 128 * 4);
+      return out;
+    };
+    const input = { width: 128, height: 96, color: noisy.data, albedo: crop(guide('albedo')), normal: crop(guide('normal')) };
+    const inPage = await session().denoise(input);
+    const inWorker = await session().denoise(input, { worker: true });
+    console.log(`128x96: main thread blocked ${inPage.longestMainThreadGap.toFixed(0)} ms in page, ${inWorker.longestMainThreadGap.toFixed(0)} ms with the worker`);
+    expect(Buffer.from(inWorker.data.buffer).equals(Buffer.from(inPage.data.buffer))).toBe(true);
+    expect(inWorker.longestMainThreadGap).toBeLessThan(Math.max(100, inPage.longestMainThreadGap / 3));
+  });
+
   it('displays a handed-in linear image exactly as the tracer displays its own', async () => {
     const linear = await renderLinear(session(), scene, 2, 3, { width: 32, height: 24 });
     for (const tonemap of ['none', 'aces']) {
