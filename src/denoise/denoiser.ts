@@ -9,7 +9,11 @@
  * PathTracer.readLinear() returns); the result has the colour's layout, its
  * alpha copied. Why WebAssembly and not the GPU: on machines without a GPU
  * (SwiftShader) the WebGL and WebGPU networks take 80-150 s for 256x192,
- * the CPU backend a few seconds (bench/denoise.ts, README).
+ * WebAssembly about 1 s (bench/results/denoise-2026-11-28.md).
+ *
+ * Pages should use createDenoiserWorker() (same interface): the network
+ * runs for seconds, and this project's pages forbid WebAssembly compilation
+ * in their CSP (no 'wasm-unsafe-eval'); a same-origin worker has no CSP.
  */
 import * as tf from '@tensorflow/tfjs-core';
 import { UNet, UNET_ALIGNMENT, UNET_INPUT_CHANNELS } from './unet';

@@ -1,7 +1,7 @@
 /**
  * The headless page's denoiser entry: float32 arrays arrive base64-encoded
- * (Playwright passes JSON), go through src/denoise, and leave the same way.
- * The module and its weights load on first use only.
+ * (Playwright passes JSON), go through src/denoise in a dedicated worker,
+ * and leave the same way. The module and its weights load on first use only.
  */
 import type { Denoiser, DenoiserOptions } from '../denoise';
 
@@ -15,8 +15,6 @@ export interface DenoiseRequest {
   options?: Pick<DenoiserOptions, 'clampInput'> & {
     /** Base64 of other TZA weights (the benchmark compares OIDN's small network); default: the bundled file. */
     weights?: string;
-    /** Run in a dedicated worker (createDenoiserWorker), as the interactive page should. */
-    worker?: boolean;
   };
 }
 
@@ -38,9 +36,12 @@ async function denoiserFor(options: DenoiseRequest['options'] = {}): Promise<Den
   const key = JSON.stringify(options);
   let denoiser = denoisers.get(key);
   if (!denoiser) {
-    const { createDenoiser, createDenoiserWorker } = await import('../denoise');
+    // In a worker: the page stays responsive, and the worker (a same-origin
+    // script with no CSP of its own) may compile WebAssembly, which the
+    // page's CSP rightly forbids ('wasm-unsafe-eval' is not granted).
+    const { createDenoiserWorker } = await import('../denoise/workerClient');
     const weights = options.weights === undefined ? undefined : fromBase64(options.weights).buffer as ArrayBuffer;
-    denoiser = (options.worker ? createDenoiserWorker : createDenoiser)({ clampInput: options.clampInput, weights });
+    denoiser = createDenoiserWorker({ clampInput: options.clampInput, weights });
     denoiser.catch(() => denoisers.delete(key));
     denoisers.set(key, denoiser);
   }

@@ -3,7 +3,7 @@
  * a 16 spp render of the seed scene with Mitsuba guides
  * (test/fixtures/denoise, made by bench/denoise/fixtures.ts) comes out at
  * least 5x closer to the reference, finite, and bit-identical on a second
- * run; the display of a handed-in linear image is the tracer's own display;
+ * run, without blocking the page's main thread (it runs in a worker); the display of a handed-in linear image is the tracer's own display;
  * bad input and a tracer without guides give clear errors.
  */
 import { readFileSync } from 'node:fs';
@@ -30,6 +30,9 @@ describe('denoiser', () => {
     const first = await session().denoise(input);
     const second = await session().denoise(input);
     expect(first.backend).toBe('wasm');
+    // The network runs in a worker: the page's timers keep ticking meanwhile.
+    console.log(`main thread: longest gap ${second.longestMainThreadGap.toFixed(0)} ms during a ${second.milliseconds.toFixed(0)} ms denoise`);
+    expect(second.longestMainThreadGap).toBeLessThan(second.milliseconds / 3);
     expect(first.data.every(Number.isFinite), 'finite output').toBe(true);
     expect(Buffer.from(second.data.buffer).equals(Buffer.from(first.data.buffer)), 'deterministic').toBe(true);
     const reference = loadReference('seed');
@@ -37,21 +40,6 @@ describe('denoiser', () => {
     const after = relativeMse({ width, height, channels: 4, data: first.data }, reference);
     console.log(`seed 16 spp: relMSE ${before.toExponential(2)} -> ${after.toExponential(2)} in ${first.milliseconds.toFixed(0)} ms`);
     expect(after * 5).toBeLessThan(before);
-  });
-
-  it('runs in a worker with the same bits, without blocking the main thread', async () => {
-    const noisy = await renderLinear(session(), scene, 4, 2, { width: 128, height: 96 });
-    const crop = (data: Float32Array) => {
-      const out = new Float32Array(128 * 96 * 4);
-      for (let y = 0; y < 96; y++) out.set(data.subarray(y * width * 4, (y * width + 128) * 4), y * 128 * 4);
-      return out;
-    };
-    const input = { width: 128, height: 96, color: noisy.data, albedo: crop(guide('albedo')), normal: crop(guide('normal')) };
-    const inPage = await session().denoise(input);
-    const inWorker = await session().denoise(input, { worker: true });
-    console.log(`128x96: main thread blocked ${inPage.longestMainThreadGap.toFixed(0)} ms in page, ${inWorker.longestMainThreadGap.toFixed(0)} ms with the worker`);
-    expect(Buffer.from(inWorker.data.buffer).equals(Buffer.from(inPage.data.buffer))).toBe(true);
-    expect(inWorker.longestMainThreadGap).toBeLessThan(Math.max(100, inPage.longestMainThreadGap / 3));
   });
 
   it('displays a handed-in linear image exactly as the tracer displays its own', async () => {
