@@ -52,7 +52,7 @@ function measure(name: string, meshes: BvhMeshInput[]): void {
   console.log(
     `${name}: ${triangles} triangles, ${packed.nodeCount} nodes, depth ${packed.depth}; ` +
       `build ${(t1 - t0).toFixed(0)} ms, pack ${(t2 - t1).toFixed(0)} ms; ` +
-      `textures ${mb(textureBytes)} (nodes ${packed.nodes.width}x${packed.nodes.height}, triangles ${packed.triangles.width}x${packed.triangles.height}); ` +
+      `textures ${mb(textureBytes)} (nodes ${packed.nodes.width}x${packed.nodes.height}x${packed.nodes.layers}, triangles ${packed.triangles.width}x${packed.triangles.height}x${packed.triangles.layers}); ` +
       `heap+arrays grew ${mb(after.heapUsed + after.arrayBuffers - before.heapUsed - before.arrayBuffers)}, rss ${mb(after.rss)}`,
   );
 }

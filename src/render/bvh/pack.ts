@@ -5,9 +5,12 @@
  * exact below 2^24, which the texture size caps anyway, and no denormal bit
  * patterns for a GPU to flush.
  *
- * Both textures are BVH_TEXTURE_WIDTH texels wide (a power of two, so the
- * shader maps an index to a texel with a mask and a shift), as many rows as
- * needed. Texel i is at (i % width, i / width).
+ * Both are 2D array textures BVH_TEXTURE_WIDTH (2048) texels wide and
+ * high, as many layers as needed (a single layer only as high as needed):
+ * texel i is at (i % 2048, (i / 2048) % 2048, layer i / 2048^2), masks and
+ * shifts in the shader. 2048 and 256 layers are WebGL2's guaranteed minimum
+ * MAX_TEXTURE_SIZE and MAX_ARRAY_TEXTURE_LAYERS, so the layout works on every
+ * WebGL2 device.
  *
  * uBvhNodes: 2 texels per node, node i at texels 2i and 2i + 1:
  *   (min.xyz, a), (max.xyz, b)
@@ -18,25 +21,27 @@
  *   (v2.xyz, mesh index); a smooth triangle's vertex normals n0, n1, n2
  *   (unit, w = 0) follow all triangles, at its normals texel .. + 2.
  *
- * Limit: a texture holds at most BVH_TEXTURE_WIDTH * MAX_TEXTURE_SIZE texels.
- * With the WebGL2 minimum of 4096 rows that many GPUs exceed, 4096 * 4096 =
- * 16.7M texels: 2.79M smooth or 5.59M flat triangles (6 or 3 texels each).
+ * Limit: texel indices are stored as floats, exact up to 2^24 = 16.7M
+ * texels (4 layers): 2.79M smooth or 5.59M flat triangles in total (6 or 3
+ * texels each). Memory is 96 bytes per smooth triangle (48 flat) plus about
+ * 32 bytes per triangle for the nodes: ~125 MB for 1M smooth triangles.
  */
 import type { Bvh, BvhMeshInput } from './build';
 
-export const BVH_TEXTURE_WIDTH = 4096;
+export const BVH_TEXTURE_WIDTH = 2048;
 export const BVH_NODE_TEXELS = 2;
 export const BVH_TRIANGLE_TEXELS = 3;
-/** Rows any WebGL2 device this renderer supports allows (MAX_TEXTURE_SIZE >= 4096 is checked at upload). */
-export const BVH_MAX_ROWS = 4096;
-/** The documented total: smooth triangles need 6 texels each. */
-export const MAX_TRIANGLES = Math.floor((BVH_TEXTURE_WIDTH * BVH_MAX_ROWS) / 6);
+/** Texel indices are floats in the textures: exact below 2^24. */
+export const BVH_MAX_TEXELS = 2 ** 24;
+/** The documented total (every triangle smooth: 6 texels each). */
+export const MAX_TRIANGLES = Math.floor(BVH_MAX_TEXELS / 6);
 
 export interface TextureData {
-  /** RGBA32F texels, width * height * 4 floats (padded). */
+  /** RGBA32F texels, width * height * layers * 4 floats (padded). */
   data: Float32Array;
   width: number;
   height: number;
+  layers: number;
 }
 
 export interface PackedBvh {
@@ -49,10 +54,13 @@ export interface PackedBvh {
   depth: number;
 }
 
-function texture(texels: number): TextureData {
+/** Storage for `texels` texels in the layout above. */
+export function bvhTexture(texels: number): TextureData {
   const width = BVH_TEXTURE_WIDTH;
-  const height = Math.max(1, Math.ceil(texels / width));
-  return { data: new Float32Array(width * height * 4), width, height };
+  const perLayer = width * width;
+  const layers = Math.max(1, Math.ceil(texels / perLayer));
+  const height = layers > 1 ? width : Math.max(1, Math.ceil(texels / width));
+  return { data: new Float32Array(width * height * layers * 4), width, height, layers };
 }
 
 export function packBvh(bvh: Bvh, meshes: BvhMeshInput[]): PackedBvh {
@@ -61,10 +69,10 @@ export function packBvh(bvh: Bvh, meshes: BvhMeshInput[]): PackedBvh {
   meshes.forEach((m, i) => (meshOf[i + 1] = meshOf[i] + m.indices.length / 3));
   const smoothCount = meshes.reduce((sum, m) => sum + (m.normals ? m.indices.length / 3 : 0), 0);
   const triangleTexels = n * BVH_TRIANGLE_TEXELS + smoothCount * 3;
-  if (triangleTexels > BVH_TEXTURE_WIDTH * BVH_MAX_ROWS) {
+  if (triangleTexels > BVH_MAX_TEXELS) {
     throw new Error(`${n} triangles exceed the BVH texture limit (${MAX_TRIANGLES} smooth triangles in total)`);
   }
-  const nodes = texture(bvh.nodeCount * BVH_NODE_TEXELS);
+  const nodes = bvhTexture(bvh.nodeCount * BVH_NODE_TEXELS);
   for (let i = 0; i < bvh.nodeCount; i++) {
     const o = i * 8;
     for (let k = 0; k < 3; k++) {
@@ -74,7 +82,7 @@ export function packBvh(bvh: Bvh, meshes: BvhMeshInput[]): PackedBvh {
     nodes.data[o + 3] = bvh.nodeData[i * 2];
     nodes.data[o + 7] = bvh.nodeData[i * 2 + 1];
   }
-  const triangles = texture(triangleTexels);
+  const triangles = bvhTexture(triangleTexels);
   const out = triangles.data;
   let normalTexel = n * BVH_TRIANGLE_TEXELS;
   let mesh = 0;
