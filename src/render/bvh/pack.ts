@@ -6,11 +6,11 @@
  * patterns for a GPU to flush.
  *
  * Both are 2D array textures BVH_TEXTURE_WIDTH (2048) texels wide and
- * high, as many layers as needed (a single layer only as high as needed):
- * texel i is at (i % 2048, (i / 2048) % 2048, layer i / 2048^2), masks and
- * shifts in the shader. 2048 and 256 layers are WebGL2's guaranteed minimum
- * MAX_TEXTURE_SIZE and MAX_ARRAY_TEXTURE_LAYERS, so the layout works on every
- * WebGL2 device.
+ * BVH_LAYER_ROWS (512) high, as many layers as needed (a single layer only
+ * as high as needed): texel i is at (i % 2048, (i / 2048) % 512, layer
+ * i / 2^20), masks and shifts in the shader. WebGL2 guarantees
+ * MAX_TEXTURE_SIZE >= 2048 and MAX_ARRAY_TEXTURE_LAYERS >= 256, so the layout
+ * works on every WebGL2 device; short layers waste at most 16 MB of padding.
  *
  * uBvhNodes: 2 texels per node, node i at texels 2i and 2i + 1:
  *   (min.xyz, a), (max.xyz, b)
@@ -22,13 +22,14 @@
  *   (unit, w = 0) follow all triangles, at its normals texel .. + 2.
  *
  * Limit: texel indices are stored as floats, exact up to 2^24 = 16.7M
- * texels (4 layers): 2.79M smooth or 5.59M flat triangles in total (6 or 3
+ * texels (16 layers): 2.79M smooth or 5.59M flat triangles in total (6 or 3
  * texels each). Memory is 96 bytes per smooth triangle (48 flat) plus about
  * 32 bytes per triangle for the nodes: ~125 MB for 1M smooth triangles.
  */
 import type { Bvh, BvhMeshInput } from './build';
 
 export const BVH_TEXTURE_WIDTH = 2048;
+export const BVH_LAYER_ROWS = 512;
 export const BVH_NODE_TEXELS = 2;
 export const BVH_TRIANGLE_TEXELS = 3;
 /** Texel indices are floats in the textures: exact below 2^24. */
@@ -57,9 +58,8 @@ export interface PackedBvh {
 /** Storage for `texels` texels in the layout above. */
 export function bvhTexture(texels: number): TextureData {
   const width = BVH_TEXTURE_WIDTH;
-  const perLayer = width * width;
-  const layers = Math.max(1, Math.ceil(texels / perLayer));
-  const height = layers > 1 ? width : Math.max(1, Math.ceil(texels / width));
+  const layers = Math.max(1, Math.ceil(texels / (width * BVH_LAYER_ROWS)));
+  const height = layers > 1 ? BVH_LAYER_ROWS : Math.max(1, Math.ceil(texels / width));
   return { data: new Float32Array(width * height * layers * 4), width, height, layers };
 }
 

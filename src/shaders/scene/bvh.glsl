@@ -1,8 +1,8 @@
 // Triangle BVH traversal (closest hit and any hit) and the surface at a hit.
 // Packed by src/render/bvh/pack.ts, uploaded by src/render/bvhTextures.ts.
 //
-// uniform sampler2DArray uBvhNodes      RGBA32F, 2048 x 2048 (one layer: fewer rows) x layers;
-//   texel i at (i % 2048, (i / 2048) % 2048, layer i / 2048^2).
+// uniform sampler2DArray uBvhNodes      RGBA32F, 2048 x 512 (one layer: fewer rows) x layers;
+//   texel i at (i % 2048, (i / 2048) % 512, layer i / 2^20).
 //   Node i = texels 2i, 2i+1: (min.xyz, a), (max.xyz, b).
 //   Interior: b = 0, first child i + 1, second child a. Leaf: b = triangle count, a = first triangle.
 // uniform sampler2DArray uBvhTriangles  the same layout. Triangle j = texels 3j .. 3j+2:
@@ -18,6 +18,9 @@
 
 #ifndef BVH_TEXTURE_WIDTH_LOG2
 #define BVH_TEXTURE_WIDTH_LOG2 11
+#endif
+#ifndef BVH_LAYER_ROWS_LOG2
+#define BVH_LAYER_ROWS_LOG2 9
 #endif
 #ifndef BVH_STACK_SIZE
 #define BVH_STACK_SIZE 32
@@ -46,8 +49,9 @@ const float BVH_NO_HIT = 3.0e38;
 const float BVH_BOX_EXIT_SCALE = 1.000001;
 
 vec4 bvhTexel(highp sampler2DArray map, int i) {
-  const int mask = (1 << BVH_TEXTURE_WIDTH_LOG2) - 1;
-  return texelFetch(map, ivec3(i & mask, (i >> BVH_TEXTURE_WIDTH_LOG2) & mask, i >> (2 * BVH_TEXTURE_WIDTH_LOG2)), 0);
+  const int columns = (1 << BVH_TEXTURE_WIDTH_LOG2) - 1;
+  const int rows = (1 << BVH_LAYER_ROWS_LOG2) - 1;
+  return texelFetch(map, ivec3(i & columns, (i >> BVH_TEXTURE_WIDTH_LOG2) & rows, i >> (BVH_TEXTURE_WIDTH_LOG2 + BVH_LAYER_ROWS_LOG2)), 0);
 }
 
 // Entry distance into node's box, or BVH_NO_HIT when the ray misses it before tMax.
