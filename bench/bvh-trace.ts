@@ -2,7 +2,7 @@
  * Rough figures for the GLSL BVH traversal on this machine (SwiftShader):
  * the kernel's compile time and closest-hit / any-hit rays per second for
  * primary rays over the bunny and over a ~1M-triangle mesh.
- * Run after `npm run build:web`: npx tsx bench/bvh-trace.ts
+ * Run after `npm run build:web`: npx tsx bench/bvh-trace.ts [--bunny-only]
  */
 import { readFileSync } from 'node:fs';
 import { openRenderSession } from '../src/node/session';
@@ -36,8 +36,8 @@ async function main(): Promise<void> {
     const bunny = await decodeMesh(new Uint8Array(readFileSync(new URL('../test/fixtures/meshes/bunny.ply', import.meta.url))), 'bunny.ply');
     const scenes: [string, BvhMeshInput[]][] = [
       ['bunny (3674 triangles)', [{ ...bunny, material: 0 }]],
-      ['icosphere level 8 (1.31M triangles)', [{ ...icosphere(8, true), material: 0 }]],
     ];
+    if (!process.argv.includes('--bunny-only')) scenes.push(['icosphere level 8 (1.31M triangles)', [{ ...icosphere(8, true), material: 0 }]]);
     const [width, height] = [256, 192];
     for (const [name, meshes] of scenes) {
       const packed = buildAndPack(meshes);
