@@ -2,7 +2,7 @@
  * Rough figures for the GLSL BVH traversal on this machine (SwiftShader):
  * the kernel's compile time and closest-hit / any-hit rays per second for
  * primary rays over the bunny and over a ~1M-triangle mesh.
- * Run after `npm run build:web`: npx tsx bench/bvh-trace.ts [--bunny-only]
+ * Run after `npm run build:web`: npx tsx bench/bvh-trace.ts [--bunny-only] [--web-root DIR]
  */
 import { readFileSync } from 'node:fs';
 import { openRenderSession } from '../src/node/session';
@@ -31,7 +31,8 @@ function primaryRays(packed: PackedBvh, width: number, height: number): Float32A
 }
 
 async function main(): Promise<void> {
-  const session = await openRenderSession();
+  const rootArg = process.argv.indexOf('--web-root');
+  const session = await openRenderSession(rootArg > 0 ? { webRoot: process.argv[rootArg + 1] } : {});
   try {
     const bunny = await decodeMesh(new Uint8Array(readFileSync(new URL('../test/fixtures/meshes/bunny.ply', import.meta.url))), 'bunny.ply');
     const scenes: [string, BvhMeshInput[]][] = [
