@@ -8,7 +8,7 @@ import { readFileSync } from 'node:fs';
 import { openRenderSession } from '../src/node/session';
 import { buildAndPack } from '../src/render/bvh/worker';
 import type { BvhMeshInput } from '../src/render/bvh/build';
-import { bvhBounds, type PackedBvh } from '../src/render/bvh/pack';
+import type { PackedBvh } from '../src/render/bvh/pack';
 import { decodeMesh } from '../src/scene/mesh';
 import { icosphere } from '../test/support/icosphere';
 
@@ -16,7 +16,8 @@ const b64 = (a: Float32Array) => Buffer.from(a.buffer, a.byteOffset, a.byteLengt
 
 /** width x height rays from a point in front of the bounds, through a grid covering them. */
 function primaryRays(packed: PackedBvh, width: number, height: number): Float32Array {
-  const [lo, hi] = bvhBounds(packed);
+  const lo = packed.nodes.data.subarray(0, 3);
+  const hi = packed.nodes.data.subarray(4, 7);
   const c = [0, 1, 2].map((k) => (lo[k] + hi[k]) / 2);
   const size = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
   const eye = [c[0], c[1], c[2] + 2 * size];

@@ -12,15 +12,10 @@
  * MAX_TEXTURE_SIZE >= 2048 and MAX_ARRAY_TEXTURE_LAYERS >= 256, so the layout
  * works on every WebGL2 device; short layers waste at most 16 MB of padding.
  *
- * uBvhNodes: interior nodes only, each holding its two children's boxes
- * (so a visit fetches 4 texels and leaves are never visited as nodes):
- * node i at texels 4i .. 4i + 3:
- *   (left.min.xyz, left.ref), (left.max.xyz, left.count),
- *   (right.min.xyz, right.ref), (right.max.xyz, right.count)
- *   a child with count 0 is interior: ref = its node index;
- *   a leaf has count >= 1 triangles from ref on.
- * Node 0 is the root. A BVH that is a single leaf (one triangle) is packed as
- * a root whose two children are that same leaf.
+ * uBvhNodes: 2 texels per node, node i at texels 2i and 2i + 1:
+ *   (min.xyz, a), (max.xyz, b)
+ *   interior: b = 0, a = index of the second child (the first is i + 1)
+ *   leaf:     b = triangle count (>= 1), a = first triangle
  * uBvhTriangles: triangle j (in BVH order) at texels 3j .. 3j + 2:
  *   (v0.xyz, material index), (v1.xyz, normals texel or -1 when flat),
  *   (v2.xyz, mesh index); a smooth triangle's vertex normals n0, n1, n2
@@ -35,7 +30,7 @@ import type { Bvh, BvhMeshInput } from './build';
 
 export const BVH_TEXTURE_WIDTH = 2048;
 export const BVH_LAYER_ROWS = 512;
-export const BVH_NODE_TEXELS = 4;
+export const BVH_NODE_TEXELS = 2;
 export const BVH_TRIANGLE_TEXELS = 3;
 /** Texel indices are floats in the textures: exact below 2^24. */
 export const BVH_MAX_TEXELS = 2 ** 24;
@@ -53,7 +48,6 @@ export interface TextureData {
 export interface PackedBvh {
   nodes: TextureData;
   triangles: TextureData;
-  /** Interior nodes packed (leaves live in their parents). */
   nodeCount: number;
   triangleCount: number;
   /** BVH triangle j -> input triangle id (meshes concatenated in input order). */
@@ -78,7 +72,16 @@ export function packBvh(bvh: Bvh, meshes: BvhMeshInput[]): PackedBvh {
   if (triangleTexels > BVH_MAX_TEXELS) {
     throw new Error(`${n} triangles exceed the BVH texture limit (${MAX_TRIANGLES} smooth triangles in total)`);
   }
-  const { nodes, interiorCount } = packNodes(bvh);
+  const nodes = bvhTexture(bvh.nodeCount * BVH_NODE_TEXELS);
+  for (let i = 0; i < bvh.nodeCount; i++) {
+    const o = i * 8;
+    for (let k = 0; k < 3; k++) {
+      nodes.data[o + k] = bvh.nodeBounds[i * 6 + k];
+      nodes.data[o + 4 + k] = bvh.nodeBounds[i * 6 + 3 + k];
+    }
+    nodes.data[o + 3] = bvh.nodeData[i * 2];
+    nodes.data[o + 7] = bvh.nodeData[i * 2 + 1];
+  }
   const triangles = bvhTexture(triangleTexels);
   const out = triangles.data;
   let normalTexel = n * BVH_TRIANGLE_TEXELS;
@@ -99,42 +102,7 @@ export function packBvh(bvh: Bvh, meshes: BvhMeshInput[]): PackedBvh {
     out[o + 11] = mesh;
     if (normals) normalTexel += 3;
   }
-  return { nodes, triangles, nodeCount: interiorCount, triangleCount: n, triangleOrder: bvh.triangleOrder, depth: bvh.depth };
-}
-
-function packNodes(bvh: Bvh): { nodes: TextureData; interiorCount: number } {
-  const isLeaf = (i: number) => bvh.nodeData[i * 2 + 1] > 0;
-  // Interior nodes keep their depth-first order; the root is interior unless the BVH is one leaf.
-  const packedIndex = new Int32Array(bvh.nodeCount).fill(-1);
-  let interiorCount = 0;
-  for (let i = 0; i < bvh.nodeCount; i++) if (!isLeaf(i)) packedIndex[i] = interiorCount++;
-  const nodes = bvhTexture(Math.max(1, interiorCount) * BVH_NODE_TEXELS);
-  const writeChild = (o: number, child: number) => {
-    for (let k = 0; k < 3; k++) {
-      nodes.data[o + k] = bvh.nodeBounds[child * 6 + k];
-      nodes.data[o + 4 + k] = bvh.nodeBounds[child * 6 + 3 + k];
-    }
-    nodes.data[o + 3] = isLeaf(child) ? bvh.nodeData[child * 2] : packedIndex[child];
-    nodes.data[o + 7] = isLeaf(child) ? bvh.nodeData[child * 2 + 1] : 0;
-  };
-  if (interiorCount === 0) {
-    writeChild(0, 0);
-    writeChild(8, 0);
-    return { nodes, interiorCount: 1 };
-  }
-  for (let i = 0; i < bvh.nodeCount; i++) {
-    if (isLeaf(i)) continue;
-    const o = packedIndex[i] * BVH_NODE_TEXELS * 4;
-    writeChild(o, i + 1);
-    writeChild(o + 8, bvh.nodeData[i * 2]);
-  }
-  return { nodes, interiorCount };
-}
-
-/** The box around everything: the union of the root's two child boxes (min xyz, max xyz). */
-export function bvhBounds(packed: PackedBvh): [number[], number[]] {
-  const d = packed.nodes.data;
-  return [[0, 1, 2].map((k) => Math.min(d[k], d[8 + k])), [0, 1, 2].map((k) => Math.max(d[4 + k], d[12 + k]))];
+  return { nodes, triangles, nodeCount: bvh.nodeCount, triangleCount: n, triangleOrder: bvh.triangleOrder, depth: bvh.depth };
 }
 
 /** The mesh holding input triangle `id`; starts from the last answer (ids often come in runs). */

@@ -65,13 +65,13 @@ export function intersectTriangle(tex: Float32Array, j: number, ray: ShearedRay,
   return { triangle: j, t, b1: v / det, b2: w / det };
 }
 
-/** Entry distance of the ray into the box stored at floats o (min) and o + 4 (max), or Infinity when it misses before tMax. */
-export function boxEntry(nodes: Float32Array, o: number, origin: Vec3, invDir: Vec3, tMax: number): number {
+/** Entry distance of the ray into node's box, or Infinity when it misses before tMax. */
+export function boxEntry(nodes: Float32Array, node: number, origin: Vec3, invDir: Vec3, tMax: number): number {
   let enter = 0;
   let exit = tMax;
   for (let k = 0; k < 3; k++) {
-    const t0 = (nodes[o + k] - origin[k]) * invDir[k];
-    const t1 = (nodes[o + 4 + k] - origin[k]) * invDir[k];
+    const t0 = (nodes[node * 8 + k] - origin[k]) * invDir[k];
+    const t1 = (nodes[node * 8 + 4 + k] - origin[k]) * invDir[k];
     enter = Math.max(enter, Math.min(t0, t1));
     exit = Math.min(exit, Math.max(t0, t1));
   }
@@ -93,16 +93,13 @@ export function traverseBvh(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: nu
   const stackT: number[] = [];
   let best: BvhHit | null = null;
   let limit = tMax;
-  let node = 0;
+  let node = boxEntry(nodes, 0, origin, invDir, limit) < Infinity ? 0 : -1;
   while (node >= 0) {
-    // The node holds both children: their boxes, and for leaves their triangles.
-    const o = node * 16;
-    const tl = boxEntry(nodes, o, origin, invDir, limit);
-    const tr = boxEntry(nodes, o + 8, origin, invDir, limit);
-    for (const [t, c] of [[tl, o], [tr, o + 8]]) {
-      const count = nodes[c + 7];
-      if (t === Infinity || count === 0) continue;
-      for (let j = nodes[c + 3]; j < nodes[c + 3] + count; j++) {
+    const a = nodes[node * 8 + 3];
+    const count = nodes[node * 8 + 7];
+    let next = -1;
+    if (count > 0) {
+      for (let j = a; j < a + count; j++) {
         const hit = intersectTriangle(tris, j, ray, limit);
         if (hit) {
           best = hit;
@@ -110,15 +107,18 @@ export function traverseBvh(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: nu
           if (anyHit) return best;
         }
       }
-    }
-    const goLeft = tl <= limit && nodes[o + 7] === 0;
-    const goRight = tr <= limit && nodes[o + 15] === 0;
-    let next = goLeft ? nodes[o + 3] : goRight ? nodes[o + 11] : -1;
-    if (goLeft && goRight) {
-      if (stack.length >= MAX_BVH_DEPTH) throw new Error('BVH stack overflow');
-      stack.push(tl <= tr ? nodes[o + 11] : nodes[o + 3]);
-      stackT.push(Math.max(tl, tr));
-      next = tl <= tr ? nodes[o + 3] : nodes[o + 11];
+    } else {
+      const left = node + 1;
+      const right = a;
+      const tl = boxEntry(nodes, left, origin, invDir, limit);
+      const tr = boxEntry(nodes, right, origin, invDir, limit);
+      if (tl < Infinity && tr < Infinity) {
+        if (stack.length >= MAX_BVH_DEPTH) throw new Error('BVH stack overflow');
+        stack.push(tl <= tr ? right : left);
+        stackT.push(Math.max(tl, tr));
+        next = tl <= tr ? left : right;
+      } else if (tl < Infinity) next = left;
+      else if (tr < Infinity) next = right;
     }
     while (next < 0 && stack.length > 0) {
       const t = stackT.pop()!;

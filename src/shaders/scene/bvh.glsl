@@ -3,10 +3,8 @@
 //
 // uniform sampler2DArray uBvhNodes      RGBA32F, 2048 x 512 (one layer: fewer rows) x layers;
 //   texel i at (i % 2048, (i / 2048) % 512, layer i / 2^20).
-//   Interior nodes only; node i = texels 4i .. 4i+3, its children's boxes:
-//   (left.min.xyz, left.ref), (left.max.xyz, left.count), (right.min.xyz, right.ref), (right.max.xyz, right.count).
-//   count 0: an interior child, ref = its node index; count >= 1: a leaf, triangles ref .. ref+count-1.
-//   Node 0 is the root.
+//   Node i = texels 2i, 2i+1: (min.xyz, a), (max.xyz, b).
+//   Interior: b = 0, first child i + 1, second child a. Leaf: b = triangle count, a = first triangle.
 // uniform sampler2DArray uBvhTriangles  the same layout. Triangle j = texels 3j .. 3j+2:
 //   (v0.xyz, material), (v1.xyz, normals texel or -1 if flat), (v2.xyz, mesh index);
 //   a smooth triangle's vertex normals n0 n1 n2 at its normals texel .. +2.
@@ -56,10 +54,10 @@ vec4 bvhTexel(highp sampler2DArray map, int i) {
   return texelFetch(map, ivec3(i & columns, (i >> BVH_TEXTURE_WIDTH_LOG2) & rows, i >> (BVH_TEXTURE_WIDTH_LOG2 + BVH_LAYER_ROWS_LOG2)), 0);
 }
 
-// Entry distance into the box [lo, hi], or BVH_NO_HIT when the ray misses it before tMax.
-float bvhBoxEntry(vec3 lo, vec3 hi, vec3 origin, vec3 invDir, float tMax) {
-  vec3 t0 = (lo - origin) * invDir;
-  vec3 t1 = (hi - origin) * invDir;
+// Entry distance into node's box, or BVH_NO_HIT when the ray misses it before tMax.
+float bvhBoxEntry(int node, vec3 origin, vec3 invDir, float tMax) {
+  vec3 t0 = (bvhTexel(uBvhNodes, 2 * node).xyz - origin) * invDir;
+  vec3 t1 = (bvhTexel(uBvhNodes, 2 * node + 1).xyz - origin) * invDir;
   vec3 near = min(t0, t1);
   vec3 far = max(t0, t1);
   float enter = max(max(near.x, near.y), max(near.z, 0.0));
@@ -90,41 +88,36 @@ bool bvhIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit
   int stack[BVH_STACK_SIZE];
   float stackT[BVH_STACK_SIZE];
   int sp = 0;
-  int node = 0;
+  int node = bvhBoxEntry(0, origin, invDir, tMax) < BVH_NO_HIT ? 0 : -1;
   while (node >= 0) {
-    vec4 l0 = bvhTexel(uBvhNodes, 4 * node);
-    vec4 l1 = bvhTexel(uBvhNodes, 4 * node + 1);
-    vec4 r0 = bvhTexel(uBvhNodes, 4 * node + 2);
-    vec4 r1 = bvhTexel(uBvhNodes, 4 * node + 3);
-    float tl = bvhBoxEntry(l0.xyz, l1.xyz, origin, invDir, hit.t);
-    float tr = bvhBoxEntry(r0.xyz, r1.xyz, origin, invDir, hit.t);
-    // Leaf children: their triangles, both ranges in one loop (one copy of the test).
-    int countL = tl < BVH_NO_HIT ? int(l1.w) : 0;
-    int countR = tr < BVH_NO_HIT ? int(r1.w) : 0;
-    for (int k = 0; k < countL + countR; k++) {
-      int j = k < countL ? int(l0.w) + k : int(r0.w) + k - countL;
-      vec3 A = (bvhTexel(uBvhTriangles, 3 * j).xyz - origin) * shear;
-      vec3 B = (bvhTexel(uBvhTriangles, 3 * j + 1).xyz - origin) * shear;
-      vec3 C = (bvhTexel(uBvhTriangles, 3 * j + 2).xyz - origin) * shear;
-      vec3 e = vec3(C.x * B.y - C.y * B.x, A.x * C.y - A.y * C.x, B.x * A.y - B.y * A.x);
-      float det = e.x + e.y + e.z;
-      float t = dot(e, vec3(A.z, B.z, C.z)) / det;
-      bool inside = !(any(lessThan(e, vec3(0.0))) && any(greaterThan(e, vec3(0.0))));
-      if (inside && det != 0.0 && t > 0.0 && t < hit.t) {
-        hit = BvhHit(j, t, e.yz / det);
-        if (anyHit) return true;
+    float a = bvhTexel(uBvhNodes, 2 * node).w;
+    int count = int(bvhTexel(uBvhNodes, 2 * node + 1).w);
+    int next = -1;
+    if (count > 0) {
+      for (int j = int(a); j < int(a) + count; j++) {
+        vec3 A = (bvhTexel(uBvhTriangles, 3 * j).xyz - origin) * shear;
+        vec3 B = (bvhTexel(uBvhTriangles, 3 * j + 1).xyz - origin) * shear;
+        vec3 C = (bvhTexel(uBvhTriangles, 3 * j + 2).xyz - origin) * shear;
+        vec3 e = vec3(C.x * B.y - C.y * B.x, A.x * C.y - A.y * C.x, B.x * A.y - B.y * A.x);
+        float det = e.x + e.y + e.z;
+        float t = dot(e, vec3(A.z, B.z, C.z)) / det;
+        bool inside = !(any(lessThan(e, vec3(0.0))) && any(greaterThan(e, vec3(0.0))));
+        if (inside && det != 0.0 && t > 0.0 && t < hit.t) {
+          hit = BvhHit(j, t, e.yz / det);
+          if (anyHit) return true;
+        }
       }
-    }
-    // Interior children: the nearer next, the farther onto the stack.
-    bool goLeft = tl <= hit.t && l1.w == 0.0;
-    bool goRight = tr <= hit.t && r1.w == 0.0;
-    bool leftFirst = tl <= tr;
-    int next = goLeft ? int(l0.w) : (goRight ? int(r0.w) : -1);
-    if (goLeft && goRight) {
-      stack[sp] = leftFirst ? int(r0.w) : int(l0.w);
-      stackT[sp] = max(tl, tr);
-      sp++;
-      next = leftFirst ? int(l0.w) : int(r0.w);
+    } else {
+      int right = int(a);
+      float tl = bvhBoxEntry(node + 1, origin, invDir, hit.t);
+      float tr = bvhBoxEntry(right, origin, invDir, hit.t);
+      bool leftFirst = tl <= tr;
+      next = tl < BVH_NO_HIT ? (leftFirst ? node + 1 : right) : (tr < BVH_NO_HIT ? right : -1);
+      if (max(tl, tr) < BVH_NO_HIT) {
+        stack[sp] = leftFirst ? right : node + 1;
+        stackT[sp] = max(tl, tr);
+        sp++;
+      }
     }
     // Pop the nearest pending subtree still closer than the best hit.
     while (next < 0 && sp > 0) {
