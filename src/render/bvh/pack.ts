@@ -117,3 +117,9 @@ function findMesh(meshOf: Uint32Array, id: number, guess: number): number {
   }
   return lo;
 }
+
+/** The box around everything: the root node's (min xyz, max xyz). */
+export function bvhBounds(packed: PackedBvh): [number[], number[]] {
+  const d = packed.nodes.data;
+  return [[d[0], d[1], d[2]], [d[4], d[5], d[6]]];
+}
