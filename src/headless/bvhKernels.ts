@@ -9,8 +9,8 @@ import fullscreenVert from '../shaders/fullscreen.vert?raw';
 import { Program } from '../render/gl/program';
 import { FloatTarget } from '../render/gl/targets';
 import { createContext } from '../render/gl/context';
-import { BvhTextures, bvhDefines, uploadFloatTexture } from '../render/bvhTextures';
-import { bvhTexture, type PackedBvh, type TextureData } from '../render/bvh/pack';
+import { BvhTextures, bvhDefines, uploadFloatTextureArray } from '../render/bvhTextures';
+import { bvhTexture, type LayeredTextureData, type PackedBvh } from '../render/bvh/pack';
 import { buildBvhAsync } from '../render/bvh/buildAsync';
 import { decodeMesh } from '../scene/mesh';
 
@@ -43,7 +43,7 @@ function toBase64(data: Float32Array): string {
 let lastBuilt: PackedBvh | null = null;
 
 /** Texel data (base64) in the BVH textures' layout, padded as packBvh pads it. */
-function asTexture(base64: string): TextureData {
+function asTexture(base64: string): LayeredTextureData {
   const data = fromBase64(base64);
   const texture = bvhTexture(data.length / 4);
   texture.data.set(data);
@@ -73,7 +73,7 @@ export function traceBvh(request: BvhTraceRequest): string {
   const rayCount = fromBase64(request.rays).length / 8;
   const rows = Math.ceil(rayCount / request.width);
   const textures = new BvhTextures(gl, packed);
-  const rays = uploadFloatTexture(gl, asTexture(request.rays));
+  const rays = uploadFloatTextureArray(gl, asTexture(request.rays));
   const target = new FloatTarget(gl, request.width, rows);
   try {
     program.use();

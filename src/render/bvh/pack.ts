@@ -37,17 +37,21 @@ export const BVH_MAX_TEXELS = 2 ** 24;
 /** The documented total (every triangle smooth: 6 texels each). */
 export const MAX_TRIANGLES = Math.floor(BVH_MAX_TEXELS / 6);
 
+/** A 2D RGBA32F texture's data: width * height * 4 floats. */
 export interface TextureData {
-  /** RGBA32F texels, width * height * layers * 4 floats (padded). */
   data: Float32Array;
   width: number;
   height: number;
+}
+
+/** A 2D array texture's data (the BVH's): width * height * layers * 4 floats (padded). */
+export interface LayeredTextureData extends TextureData {
   layers: number;
 }
 
 export interface PackedBvh {
-  nodes: TextureData;
-  triangles: TextureData;
+  nodes: LayeredTextureData;
+  triangles: LayeredTextureData;
   nodeCount: number;
   triangleCount: number;
   /** BVH triangle j -> input triangle id (meshes concatenated in input order). */
@@ -56,7 +60,7 @@ export interface PackedBvh {
 }
 
 /** Storage for `texels` texels in the layout above. */
-export function bvhTexture(texels: number): TextureData {
+export function bvhTexture(texels: number): LayeredTextureData {
   const width = BVH_TEXTURE_WIDTH;
   const layers = Math.max(1, Math.ceil(texels / (width * BVH_LAYER_ROWS)));
   const height = layers > 1 ? BVH_LAYER_ROWS : Math.max(1, Math.ceil(texels / width));

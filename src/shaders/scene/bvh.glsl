@@ -48,6 +48,11 @@ const float BVH_NO_HIT = 3.0e38;
 // a few ulps more cover GPUs whose division is approximate.
 const float BVH_BOX_EXIT_SCALE = 1.000001;
 
+// A plain 2D texture BVH_TEXTURE_WIDTH wide (other per-triangle tables): texel i at (i % W, i / W).
+vec4 bvhTexel(highp sampler2D map, int i) {
+  return texelFetch(map, ivec2(i & ((1 << BVH_TEXTURE_WIDTH_LOG2) - 1), i >> BVH_TEXTURE_WIDTH_LOG2), 0);
+}
+
 vec4 bvhTexel(highp sampler2DArray map, int i) {
   const int columns = (1 << BVH_TEXTURE_WIDTH_LOG2) - 1;
   const int rows = (1 << BVH_LAYER_ROWS_LOG2) - 1;
