@@ -14,7 +14,7 @@ import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { decodePfm, encodePfm } from '../src/cli/pfm';
+import { decodePfm, encodePfm } from '../src/image/pfm';
 import { blockMeans, meanValue } from '../src/node/imageMetrics';
 import { toMitsubaXml } from '../src/scene/mitsuba';
 import { GLASS_FURNACE_ROUGHNESS, GLASS_FURNACE_SIZE, glassFurnaceScene } from '../test/support/glassFurnace';

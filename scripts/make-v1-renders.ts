@@ -12,7 +12,7 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import { openRenderSession } from '../src/node/session';
 import { resolve } from 'node:path';
-import { encodePfm } from '../src/cli/pfm';
+import { encodePfm } from '../src/image/pfm';
 
 /** Shared with the test, so both render exactly the same thing. */
 export const V1_SCENES = ['seed', 'glossy', 'mirrors', 'small-light', 'furnace'] as const;

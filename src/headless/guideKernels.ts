@@ -9,7 +9,8 @@ import guideKernelFrag from '../shaders/test/guide_kernels.frag?raw';
 import { Program } from '../render/gl/program';
 import { FloatTarget } from '../render/gl/targets';
 import { BLOCK_VEC4S, HEADER } from '../render/layout/scene';
-import { SCENE_CHUNKS, VERTEX_CHUNKS, featureDefines, sceneDefines } from '../render/passes/trace';
+import { featureDefines, sceneDefines } from '../render/shaderChunks';
+import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/shaderSources';
 import { createContext } from '../render/gl/context';
 import type { KernelRequest } from './kernels';
 
@@ -27,7 +28,7 @@ function guideContext() {
   if (!context) {
     const gl = createContext(new OffscreenCanvas(1, 1), false);
     const kernels = Object.fromEntries(GUIDE_KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i]));
-    const defines = { ...sceneDefines(), ...featureDefines({ guides: 1, dielectric: true }), ...kernels };
+    const defines = { ...sceneDefines(), ...featureDefines({ guides: 1, dielectric: true, environmentMap: false, meshes: false }), ...kernels };
     const program = new Program(gl, VERTEX_CHUNKS, [...SCENE_CHUNKS, { name: 'test/guide_kernels.frag', source: guideKernelFrag }], defines);
     gl.bindVertexArray(gl.createVertexArray());
     const block = gl.createBuffer();

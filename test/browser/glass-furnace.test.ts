@@ -16,7 +16,7 @@
  */
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
-import { decodePfm } from '../../src/cli/pfm';
+import { decodePfm } from '../../src/image/pfm';
 import { blockMeans, type LinearImage } from '../../src/node/imageMetrics';
 import type { RenderSession } from '../../src/node/session';
 import type { Vec3 } from '../../src/scene/types';

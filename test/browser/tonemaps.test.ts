@@ -37,7 +37,7 @@ describe('tone maps match independent implementations of their definitions', () 
       for (const exposure of EXPOSURES) {
         const input = color.map((c) => c * 2 ** exposure) as Rgb;
         for (const [tonemap, reference] of Object.entries(REFERENCES)) {
-          const pixels = await session().readDisplayed({ exposure, tonemap });
+          const pixels = await session().readDisplayed({ exposure, toneMap: tonemap });
           const expected = reference(input).map(srgb8);
           const actual = [pixels[0], pixels[1], pixels[2]];
           seen.set(`${exposure}/${tonemap}`, actual.join(','));

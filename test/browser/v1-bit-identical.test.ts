@@ -9,7 +9,7 @@
  */
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
-import { decodePfm } from '../../src/cli/pfm';
+import { decodePfm } from '../../src/image/pfm';
 import { FIXTURES, loadFixtureScene, useRenderSession } from '../support/browser';
 import { V1_RENDER, V1_SCENES } from '../../scripts/make-v1-renders';
 
