@@ -15,7 +15,7 @@ import { createContext } from '../render/gl/context';
 import type { KernelRequest } from './kernels';
 
 /** guideSetup: pixel 0 = (local cone axis, 1 - cos half angle), others = guide probability. */
-export const GUIDE_KERNELS = ['guideSetup', 'sampleGuided', 'weightGuided', 'weightBsdf', 'pdfGuided'] as const;
+export const GUIDE_KERNELS = ['guideSetup', 'sampleGuided', 'weightGuided', 'weightBsdf', 'pdfGuided', 'pdfCap'] as const;
 export type GuideKernelName = (typeof GUIDE_KERNELS)[number];
 
 export function isGuideKernel(name: string): name is GuideKernelName {
@@ -59,8 +59,9 @@ export function runGuideKernel(request: KernelRequest & { kernel: GuideKernelNam
       uSeed: request.seed ?? 1,
       uPoint: request.point ?? [0, 0, 0],
       uNormal: request.normal ?? [0, 0, 1],
+      uCap: request.cap ?? [0, 0, 1, 0.1],
     },
-    { uKernel: 'int', uParams: 'vec4', uWo: 'vec3', uGrid: 'vec2', uSeed: 'uint', uPoint: 'vec3', uNormal: 'vec3' },
+    { uKernel: 'int', uParams: 'vec4', uWo: 'vec3', uGrid: 'vec2', uSeed: 'uint', uPoint: 'vec3', uNormal: 'vec3', uCap: 'vec4' },
   );
   gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
   gl.viewport(0, 0, request.width, request.height);

@@ -29,6 +29,8 @@ export interface KernelRequest {
   point?: [number, number, number];
   normal?: [number, number, number];
   guide?: number[];
+  /** pdfCap: the cap's axis (local frame) and half angle in radians. */
+  cap?: [number, number, number, number];
 }
 
 let context: { gl: WebGL2RenderingContext; program: Program } | null = null;

@@ -10,6 +10,7 @@ uniform vec2 uGrid;
 uniform uint uSeed;
 uniform vec3 uPoint;
 uniform vec3 uNormal;
+uniform vec4 uCap;      // pdfCap: axis (local frame), half angle in radians
 
 out vec4 outValue;
 
@@ -44,6 +45,16 @@ void main() {
     float pdf;
     vec3 f = bsdfEval(m, uWo, s.wi, pdf);
     outValue = vec4(s.valid ? s.weight.x : 0.0, s.valid ? 1.0 : 0.0, pdf > 0.0 ? f.x / pdf : 0.0, s.isDelta ? -1.0 : s.pdf);
+  } else if (uKernel == KERNEL_PDFCAP) {
+    // A grid uniform in (theta, phi) over a cap around uCap.xyz, for narrow
+    // lobes that a grid over the whole sphere cannot resolve: (wi, pdf).
+    vec2 u = (vec2(pixel) + 0.5) / uGrid;
+    float theta = u.y * uCap.w;
+    float phi = 2.0 * PI * u.x;
+    vec3 wi = basisAround(normalize(uCap.xyz)) * vec3(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta));
+    float pdf;
+    bsdfEval(m, uWo, wi, pdf);
+    outValue = vec4(wi, pdf);
   } else {
     // The grid over the sphere: f |cos|, the BSDF's pdf, the mixture's pdf.
     vec3 wi = gridDirection(vec2(pixel));
