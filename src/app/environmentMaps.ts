@@ -10,6 +10,7 @@ import type { Environment, Scene } from '../scene/types';
 import type { SceneIssue } from '../scene/schema';
 import type { App } from './App';
 import { bundledMapFile } from './bundledMaps';
+import { recordApplyTime } from './mapDecoder';
 import { SceneLoader, type CompanionFiles } from './sceneLoader';
 
 /** Map files the page opens (by extension; the decoder checks the signature). */
@@ -77,8 +78,10 @@ export class EnvironmentMaps {
 
   private apply(scene: Scene, assets: Parameters<App['addAssets']>[0], files: CompanionFiles): void {
     const environment = structuredClone(scene.environment);
+    const start = performance.now();
     this.app.addAssets(assets);
     this.app.edit((s) => (s.environment = environment));
+    if (environment && 'map' in environment) recordApplyTime(environment.map, performance.now() - start);
     if (files.size) void this.keeper.keepFiles(scene, files);
     this.applied();
   }

@@ -30,6 +30,8 @@ export interface MapTimings {
   /** From the request to the decoded map back on the main thread. */
   totalMs: number;
   offMainThread: boolean;
+  /** Main thread: applying the decoded map to the scene (the texture upload is queued here), when it was applied. */
+  applyMs?: number;
 }
 
 let worker: Worker | null | undefined;
@@ -58,6 +60,12 @@ function mapWorker(): Worker | null {
 
 function record(timings: MapTimings): void {
   (globalThis as unknown as { __mapTimings?: MapTimings }).__mapTimings = timings;
+}
+
+/** Adds to the timings of the last map decoded (see MapTimings.applyMs). */
+export function recordApplyTime(name: string, applyMs: number): void {
+  const timings = (globalThis as unknown as { __mapTimings?: MapTimings }).__mapTimings;
+  if (timings?.name === name) timings.applyMs = applyMs;
 }
 
 /**
