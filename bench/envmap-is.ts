@@ -14,7 +14,8 @@
  * the shipped shaders are unchanged. A patch that no longer matches the
  * shader's text stops the bench rather than measuring the unpatched shader.
  *
- *   npx tsx bench/envmap-is.ts [--scene envmap] [--times 2,5,10] [--seed 1] [--variants importance,uniform,bsdfOnly]
+ *   npx tsx bench/envmap-is.ts [--scene envmap] [--times 2,5,10] [--seed 1] [--rounds 2] [--variants importance,uniform,bsdfOnly]
+ * Rounds alternate the variants' order and the seed; the table gives means.
  * (dist/web must be built: npx vite build)
  */
 import { readFileSync } from 'node:fs';
@@ -55,6 +56,7 @@ async function main(argv: string[]): Promise<void> {
   const sceneName = option(argv, 'scene', 'envmap');
   const times = option(argv, 'times', '2,5,10').split(',').map(Number);
   const seed = Number(option(argv, 'seed', '1'));
+  const rounds = Number(option(argv, 'rounds', '2'));
   const variants = option(argv, 'variants', 'importance,uniform,bsdfOnly').split(',');
   for (const v of variants) if (!(v in ENVIRONMENT_PATCHES)) throw new Error(`unknown variant ${v}`);
 
@@ -84,25 +86,43 @@ async function main(argv: string[]): Promise<void> {
   await page.reload();
   await page.waitForFunction(() => document.body.dataset.ready === 'true');
 
-  const rows: { variant: string; checkpoints: { seconds: number; spp: number; relMse: number }[]; mpaths: number }[] = [];
+  // Rounds alternate the order of the variants (and the seed): the shared
+  // machine's load drifts, and equal wall time is only fair when interleaved.
+  type Row = { variant: string; checkpoints: { seconds: number; spp: number; relMse: number }[]; mpaths: number };
+  const runs = new Map<string, Row[]>(variants.map((v) => [v, []]));
   try {
-    for (const variant of variants) {
-      await page.evaluate((p) => {
-        const w = window as unknown as { __patches?: [string, string][]; __patchMisses?: string[] };
-        w.__patches = p;
-        w.__patchMisses = [];
-      }, ENVIRONMENT_PATCHES[variant]);
-      console.error(`${sceneName}: ${variant}...`);
-      const { run } = await benchOurs(session, scene, size, score, times, 0.02, seed, 'kronecker', files);
-      const misses = await page.evaluate(() => (window as unknown as { __patchMisses?: string[] }).__patchMisses ?? []);
-      if (misses.length) throw new Error(`${variant}: patch text not found in the trace shader: ${misses.join(' | ')}`);
-      rows.push({ variant, checkpoints: run.checkpoints, mpaths: run.megaPathsPerSecond });
+    for (let round = 0; round < rounds; round++) {
+      for (const variant of round % 2 ? [...variants].reverse() : variants) {
+        await page.evaluate((p) => {
+          const w = window as unknown as { __patches?: [string, string][]; __patchMisses?: string[] };
+          w.__patches = p;
+          w.__patchMisses = [];
+        }, ENVIRONMENT_PATCHES[variant]);
+        console.error(`${sceneName}: ${variant}, round ${round + 1} of ${rounds}...`);
+        const { run } = await benchOurs(session, scene, size, score, times, 0.02, seed + round, 'kronecker', files);
+        const misses = await page.evaluate(() => (window as unknown as { __patchMisses?: string[] }).__patchMisses ?? []);
+        if (misses.length) throw new Error(`${variant}: patch text not found in the trace shader: ${misses.join(' | ')}`);
+        runs.get(variant)!.push({ variant, checkpoints: run.checkpoints, mpaths: run.megaPathsPerSecond });
+      }
     }
   } finally {
     await session.close();
   }
+  const mean = (values: number[]) => values.reduce((a, b) => a + b, 0) / values.length;
+  const rows: Row[] = variants.map((variant) => {
+    const list = runs.get(variant)!;
+    return {
+      variant,
+      mpaths: mean(list.map((r) => r.mpaths)),
+      checkpoints: times.map((_, i) => ({
+        seconds: mean(list.map((r) => r.checkpoints[i].seconds)),
+        spp: Math.round(mean(list.map((r) => r.checkpoints[i].spp))),
+        relMse: mean(list.map((r) => r.checkpoints[i].relMse)),
+      })),
+    };
+  });
   const base = rows[0];
-  console.log(`scene ${sceneName} ${size.width}x${size.height}, rev ${gitRevision()}: relMSE vs the Mitsuba reference at equal time`);
+  console.log(`scene ${sceneName} ${size.width}x${size.height}, rev ${gitRevision()}: relMSE vs the Mitsuba reference at equal time, mean of ${rounds} interleaved rounds`);
   console.log(['variant'.padEnd(11), 'Mpath/s', ...times.map((t) => `spp@${t}s`.padStart(9)), ...times.map((t) => `relMSE@${t}s`.padStart(12)), `x ${base.variant}`].join('  '));
   for (const row of rows) {
     const ratios = row.checkpoints.map((c, i) => (c.relMse / base.checkpoints[i].relMse).toFixed(1));
@@ -114,7 +134,7 @@ async function main(argv: string[]): Promise<void> {
       ratios.join(' '),
     ].join('  '));
   }
-  if (!argv.includes('--no-save')) console.log(`saved ${writeResult('envmap-is', { scene: sceneName, times, seed, revision: gitRevision(), rows })}`);
+  if (!argv.includes('--no-save')) console.log(`saved ${writeResult('envmap-is', { scene: sceneName, times, seed, rounds, revision: gitRevision(), rows, runs: Object.fromEntries(runs) })}`);
 }
 
 void projectRoot;
