@@ -10,7 +10,7 @@ import { assetReferences, loadSceneAssets, NO_ASSETS, type AssetReader, type Sce
 import { bundledMapBytes, bundledMapName } from './bundledMaps';
 import { decodeMap } from './mapDecoder';
 import { SceneError, type SafeParseResult, type SceneIssue } from '../scene/schema';
-import type { Scene } from '../scene/types';
+import type { EnvironmentImage, Scene } from '../scene/types';
 
 export type AssetResult = { ok: true; assets: SceneAssets } | { ok: false; issues: SceneIssue[] };
 
@@ -35,28 +35,31 @@ export async function resolveAssets(scene: Scene, files: CompanionFiles, known: 
     throw new AssetError(`not opened: open or drop it together with the scene file`);
   };
   const maps = await decodeMaps(scene, read, known);
-  if (!maps.ok) return maps;
+  // The models are decoded (and checked) even when the map failed: every unusable file is reported at once.
+  const rest = maps.issues.length ? { ...scene, environment: null } : scene;
   try {
-    return { ok: true, assets: await loadSceneAssets(scene, read, { maps: maps.assets.maps, meshes: known.meshes }) };
+    const assets = await loadSceneAssets(rest, read, { maps: maps.maps, meshes: known.meshes });
+    return maps.issues.length ? { ok: false, issues: maps.issues } : { ok: true, assets };
   } catch (error) {
-    if (error instanceof SceneError) return { ok: false, issues: error.issues };
+    if (error instanceof SceneError) return { ok: false, issues: [...maps.issues, ...error.issues] };
     throw error;
   }
 }
 
 /** The scene's map (if any) decoded off the main thread, with the known ones; loadSceneAssets then finds it decoded. */
-async function decodeMaps(scene: Scene, read: AssetReader, known: SceneAssets): Promise<AssetResult> {
+async function decodeMaps(scene: Scene, read: AssetReader, known: SceneAssets): Promise<{ maps: Map<string, EnvironmentImage>; issues: SceneIssue[] }> {
   const maps = new Map(known.maps);
+  const issues: SceneIssue[] = [];
   for (const ref of assetReferences(scene)) {
     if (ref.kind !== 'map' || maps.has(ref.file)) continue;
     try {
       maps.set(ref.file, await decodeMap(await read(ref.file), ref.file));
     } catch (error) {
       const message = error instanceof AssetError ? error.message : `cannot be read (${(error as Error)?.message ?? String(error)})`;
-      return { ok: false, issues: [{ path: ref.path, message: `${JSON.stringify(ref.file)}: ${message}` }] };
+      issues.push({ path: ref.path, message: `${JSON.stringify(ref.file)}: ${message}` });
     }
   }
-  return { ok: true, assets: { maps, meshes: known.meshes } };
+  return { maps, issues };
 }
 
 export const baseName = (name: string) => name.slice(name.replace(/\\/g, '/').lastIndexOf('/') + 1);

@@ -17,6 +17,12 @@ import { defaultScene } from '../../src/scene/presets';
 import { safeParseScene } from '../../src/scene/schema';
 import type { Scene } from '../../src/scene/types';
 
+/** A mesh entry with the format's defaults (the file is set by the test). */
+const parseMesh = () => {
+  const result = safeParseScene({ version: 2, camera: { position: [0, 0, 5], target: [0, 0, 0] }, meshes: [{ file: 'x.obj' }] });
+  if (!result.ok) throw new Error('mesh defaults');
+  return result.scene.meshes[0];
+};
 const withMap = (map: string): Scene => ({ ...defaultScene(), version: 2, environment: { map, intensity: 1, rotation: 0 } });
 
 describe('bundled environment maps', () => {
@@ -57,6 +63,10 @@ describe('bundled environment maps', () => {
     const missing = await resolveAssets(withMap('sky.hdr'), new Map());
     expect(missing.ok).toBe(false);
     if (!missing.ok) expect(missing.issues).toEqual([{ path: 'environment.map', message: expect.stringMatching(/^"sky\.hdr": not opened/) }]);
+
+    // Every unusable file is reported, not only the map.
+    const both = await resolveAssets({ ...withMap('sky.hdr'), meshes: [{ ...parseMesh(), file: 'gem.obj' }] }, new Map());
+    expect(both.ok ? [] : both.issues.map((i) => i.path)).toEqual(['environment.map', 'meshes[0].file']);
 
     const broken = await resolveAssets(withMap('sky.hdr'), new Map([['sky.hdr', new Blob([own.subarray(0, 40)])]]));
     expect(broken.ok).toBe(false);
