@@ -23,6 +23,8 @@ export interface LoadOptions {
   seed: number;
   sampler?: SamplerKind;
   russianRoulette?: boolean;
+  /** Accumulate the denoiser's guides while rendering (PathTracerOptions.aovs). */
+  aovs?: boolean;
 }
 
 export interface HeadlessApi {
@@ -35,6 +37,8 @@ export interface HeadlessApi {
   /** Discards the accumulated samples (keeps the compiled shaders: for timing). */
   reset(): void;
   readLinear(): string;
+  /** PathTracer.readAovs: each guide as base64 float32, and the samples behind them. */
+  readAovs(): { albedo: string; normal: string; samples: number };
   readDisplayed(options: DisplayOptions): string;
   loseContext(): void;
   restoreContext(): void;
@@ -99,6 +103,11 @@ const api: HeadlessApi = {
   readLinear() {
     const data = requireTracer().readLinear();
     return toBase64(new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
+  },
+  readAovs() {
+    const { albedo, normal, samples } = requireTracer().readAovs();
+    const encode = (data: Float32Array) => toBase64(new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
+    return { albedo: encode(albedo), normal: encode(normal), samples };
   },
   readDisplayed(options) {
     return toBase64(requireTracer().readDisplayed(options));

@@ -75,6 +75,12 @@ export interface RenderSession {
   reset(): Promise<void>;
   /** Mean linear radiance, RGBA float32, rows top to bottom, width*height*4. */
   readLinear(): Promise<Float32Array>;
+  /**
+   * The denoiser's guides (PathTracer.readAovs): albedo and normal of the
+   * first non-specular hit, RGBA float32, rows top to bottom, width*height*4
+   * each; rendered now if the tracer did not keep them (LoadOptions.aovs).
+   */
+  readAovs(): Promise<{ albedo: Float32Array; normal: Float32Array; samples: number }>;
   /** The displayed image exactly as the page shows it: RGBA8 sRGB, rows top to bottom. */
   readDisplayed(options: { exposure: number; toneMap: string }): Promise<Uint8Array>;
   close(): Promise<void>;
@@ -164,6 +170,10 @@ function createSession(page: Page, browser: Browser, server: StaticServer, pageE
     },
     async readLinear() {
       return toFloat32(await call('readLinear'));
+    },
+    async readAovs() {
+      const { albedo, normal, samples } = await call('readAovs');
+      return { albedo: toFloat32(albedo), normal: toFloat32(normal), samples };
     },
     async readDisplayed(options) {
       const toneMap = options.toneMap as DisplayOptions['toneMap'];
