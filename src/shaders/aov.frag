@@ -60,37 +60,40 @@ vec3 specularDirection(Material m, vec3 wo, float u, out vec3 tint) {
   return wi;
 }
 
+// The loop body is one specular event ending in the next intersection, and
+// the albedo is shaded once after it: SwiftShader runs every masked line,
+// so a quad whose rays all stop at their first hit pays for one pass.
 Aov firstNonSpecularHit(vec3 origin, vec3 direction) {
   vec3 tint = vec3(1.0);
-  Aov aov = Aov(vec3(0.0), vec3(0.0));
-  for (int depth = 0; depth < AOV_MAX_CHAIN; depth++) {
-    Hit hit = intersectScene(origin, direction);
-    Material m = loadMaterial(hit.material);
+  Hit hit;
+  Material m;
+  vec3 normal;
+  for (int depth = 0; ; depth++) {
+    hit = intersectScene(origin, direction);
+    m = loadMaterial(hit.material);
     // Two-sided standard materials shade with the normal facing the ray (traceRadiance).
     bool flip = hit.twoSided && m.type == MATERIAL_STANDARD && dot(direction, hit.normal) > 0.0;
-    vec3 normal = flip ? -hit.normal : hit.normal;
-    if (hit.kind == HIT_NONE) {
-      aov.albedo = tint * clamp(escapedRadiance(direction), 0.0, 1.0);
-      return aov;
-    }
-    if (!isSpecular(m)) {
-      vec3 color = m.type == MATERIAL_EMITTER_ONLY ? m.emission : m.color;
-      aov.albedo = tint * clamp(color, 0.0, 1.0);
-      aov.normal = normal;
-      return aov;
+    normal = flip ? -hit.normal : hit.normal;
+    if (hit.kind == HIT_NONE || !isSpecular(m)) break;
+    if (depth + 1 >= AOV_MAX_CHAIN) {
+      tint = vec3(0.0);
+      normal = vec3(0.0);
+      break;
     }
     mat3 frame = basisAround(normal);
     vec3 surfaceTint;
     vec3 wi = specularDirection(m, -direction * frame, rand4().x, surfaceTint);
     if (wi == vec3(0.0)) {
-      aov.normal = normal;  // black from this side
-      return aov;
+      tint = vec3(0.0);  // black from this side; its normal stays
+      break;
     }
     tint *= surfaceTint;
     direction = normalize(frame * wi);
     origin = spawnRayOrigin(hit, direction);
   }
-  return aov;
+  bool escaped = hit.kind == HIT_NONE;
+  vec3 color = escaped ? escapedRadiance(direction) : m.type == MATERIAL_EMITTER_ONLY ? m.emission : m.color;
+  return Aov(tint * clamp(color, 0.0, 1.0), escaped ? vec3(0.0) : normal);
 }
 
 // NaN fails every comparison (see trace.frag's isValidRadiance).
