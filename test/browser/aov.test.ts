@@ -20,7 +20,7 @@ function pixel(data: Float32Array, width: number, x: number, y: number): number[
 }
 
 function expectClose(actual: number[], expected: number[], tolerance: number, what: string): void {
-  for (let c = 0; c < 3; c++) expect(Math.abs(actual[c] - expected[c]), `${what}: ${actual} vs ${expected}`).toBeLessThan(tolerance);
+  for (let c = 0; c < 3; c++) expect(Math.abs(actual[c] - expected[c]), `${what}: ${actual} vs ${expected}`).toBeLessThanOrEqual(tolerance);
 }
 
 /** Every value finite, nothing rejected, albedo in [0, 1], normals no longer than 1. */
@@ -158,6 +158,13 @@ describe('AOV guide buffers', () => {
       let nonZero = 0;
       for (let p = 0; p < small.width * small.height; p++) nonZero += lazy.albedo[p * 4] + lazy.albedo[p * 4 + 1] + lazy.albedo[p * 4 + 2] > 0 ? 1 : 0;
       expect(nonZero, `${name}: albedo not blank`).toBeGreaterThan(0);
+      if (name === 'seed') {
+        // Rows run top to bottom: the top row sees the sky, the bottom row the ground.
+        expectClose(pixel(lazy.normal, small.width, 0, 0), [0, 0, 0], 0, 'seed: sky normal, top left');
+        expectClose(pixel(lazy.albedo, small.width, 0, 0), [0.55 * 0.35, 0.7 * 0.35, 0.35], 1e-6, 'seed: sky albedo');
+        expectClose(pixel(lazy.normal, small.width, 24, small.height - 1), [0, 1, 0], 0, 'seed: ground normal, bottom');
+        expectClose(pixel(lazy.albedo, small.width, 24, small.height - 1), [0.75, 0.75, 0.72], 1e-6, 'seed: ground albedo');
+      }
       const colourWithout = await session().readLinear();
       const kept = await guides(s, 6, { seed: 3, aovs: true });
       const colourWith = await session().readLinear();
