@@ -16,6 +16,8 @@ import { Program, ShaderCompileError } from '../render/gl/program';
 import { sceneDefines } from '../render/shaderChunks';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/shaderSources';
 import './bvhKernels'; // window.pathtraceBvh: the BVH traversal kernel for test/browser/bvh-*.test.ts
+import { denoiseArrays, fromBase64, type DenoiseRequest, type DenoiseResult } from './denoise';
+import { displayLinear } from './displayLinear';
 
 export interface LoadOptions {
   width: number;
@@ -46,6 +48,10 @@ export interface HeadlessApi {
   runKernel(request: KernelRequest): string;
   /** Compiles `source` as a fragment-shader chunk named `name` after the common chunks; the error log, or null. */
   compileLog(name: string, source: string): string | null;
+  /** Denoises base64 float32 arrays handed in (src/headless/denoise.ts). */
+  denoise(request: DenoiseRequest): Promise<DenoiseResult>;
+  /** A linear RGBA image (base64 float32) through the display pass: base64 RGBA8 sRGB. */
+  displayLinear(linear: string, width: number, height: number, options: DisplayOptions): string;
 }
 
 let tracer: PathTracer | null = null;
@@ -56,7 +62,8 @@ function requireTracer(): PathTracer {
   return tracer;
 }
 
-function fromBase64(text: string): Uint8Array {
+
+function bytesFromBase64(text: string): Uint8Array {
   const binary = atob(text);
   const bytes = new Uint8Array(binary.length);
   for (let i = 0; i < binary.length; i++) bytes[i] = binary.charCodeAt(i);
@@ -83,7 +90,7 @@ const api: HeadlessApi = {
   async load(scene, options, files = {}) {
     const assets = await loadSceneAssets(scene, async (name) => {
       if (!(name in files)) throw new Error('no such file was given to the page');
-      return fromBase64(files[name]);
+      return bytesFromBase64(files[name]);
     });
     tracer?.dispose();
     tracer = new PathTracer(undefined, scene, { ...options, assets });
@@ -134,6 +141,10 @@ const api: HeadlessApi = {
       if (error instanceof ShaderCompileError) return error.message;
       throw error;
     }
+  },
+  denoise: denoiseArrays,
+  displayLinear(linear, width, height, options) {
+    return toBase64(displayLinear(fromBase64(linear), width, height, options));
   },
 };
 

@@ -4,10 +4,12 @@
  * sky's clamped radiance with a zero normal (Open Image Denoise's
  * conventions; issue 12).
  */
+import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
+import { decodePfm } from '../../src/image/pfm';
 import { parseScene } from '../../src/scene/schema';
 import type { Scene } from '../../src/scene/types';
-import { fixtureFiles, loadFixtureScene, useRenderSession } from '../support/browser';
+import { FIXTURES, fixtureFiles, loadFixtureScene, useRenderSession } from '../support/browser';
 
 interface Guides { albedo: Float32Array; normal: Float32Array; samples: number; width: number; height: number }
 
@@ -148,6 +150,33 @@ describe('AOV guide buffers', () => {
     const rough = await guides(glass(0.5), 16);
     expectClose(pixel(rough.albedo, SIZE.width, cx, cy), [1, 1, 1], 1e-6, 'rough glass is its own albedo');
     expectClose(pixel(rough.normal, SIZE.width, cx, cy), [0, 0, 1], 1e-2, 'rough glass normal');
+  });
+
+  it('the seed scene matches the guides Mitsuba 3 computes with the same conventions (bench/denoise/guides.py)', async () => {
+    const seed = loadFixtureScene('seed');
+    const { width, height } = seed.image;
+    const g = await guides(seed, 16);
+    for (const kind of ['albedo', 'normal'] as const) {
+      // RGB, rows top to bottom (decodePfm flips PFM's bottom-up rows).
+      const reference = decodePfm(readFileSync(new URL(`denoise/seed-${kind}.pfm`, FIXTURES)));
+      expect([reference.width, reference.height]).toEqual([width, height]);
+      // Measured: mean |d| 0.0005 (albedo), 0.001 (normal); worst 16x16 block mean 0.003, 0.005
+      // (edges differ by sampling alone: 16 jittered samples here, 64 there).
+      const block = 16;
+      const blocks = new Float64Array(Math.ceil(width / block) * Math.ceil(height / block) * 3);
+      let total = 0;
+      for (let y = 0; y < height; y++) {
+        for (let x = 0; x < width; x++) {
+          for (let c = 0; c < 3; c++) {
+            const d = g[kind][(y * width + x) * 4 + c] - reference.rgb[(y * width + x) * 3 + c];
+            total += Math.abs(d);
+            blocks[((Math.floor(y / block) * Math.ceil(width / block)) + Math.floor(x / block)) * 3 + c] += d / (block * block);
+          }
+        }
+      }
+      expect(total / (width * height * 3), `${kind}: mean |difference|`).toBeLessThan(0.003);
+      expect(Math.max(...blocks.map(Math.abs)), `${kind}: worst block mean difference`).toBeLessThan(0.02);
+    }
   });
 
   it('every shared scene gives finite, well-formed guides; keeping them while rendering gives the same bits and leaves the colour unchanged', async () => {
