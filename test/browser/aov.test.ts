@@ -181,7 +181,7 @@ describe('AOV guide buffers', () => {
 
   it('every shared scene gives finite, well-formed guides; keeping them while rendering gives the same bits and leaves the colour unchanged', async () => {
     const small = { width: 48, height: 36 };
-    for (const name of ['seed', 'mirrors', 'glass', 'emissive', 'envmap', 'bunny']) {
+    for (const name of ['seed', 'mirrors', 'glass', 'emissive', 'emissive-mesh', 'envmap', 'bunny']) {
       const s = { ...loadFixtureScene(name), image: small };
       const lazy = await guides(s, 6, { seed: 3 });
       let nonZero = 0;
