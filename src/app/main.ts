@@ -16,6 +16,7 @@ import { clearError, notify, showError, showFatal, showIssues } from './messages
 import { Autosave, readStartState, type SaveStatus, type StartState } from './persistence';
 import { linkDigest } from './savedState';
 import { SceneLoader } from './sceneLoader';
+import { addModelFile, isModelFile, MESH_EXAMPLES, meshExampleFiles } from './meshControls';
 import { Panel } from './panel';
 import { encodePfm } from '../image/pfm';
 import type { RenderStats } from './renderLoop';
@@ -53,6 +54,7 @@ async function start(): Promise<void> {
   performance.mark('renderer-ready');
   const panel = new Panel(app, $('panel'));
   const autosave = new Autosave(app, showSaveStatus);
+  app.onUploadError = (message) => showError(message);
   const loader = openStartState(app, autosave, startState);
   attachInput(app, canvas);
   attachKeys(app);
@@ -158,6 +160,11 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader): void {
   const openFiles = (list: Iterable<File> | undefined | null) => {
     const files = [...(list ?? [])];
     if (!files.length) return;
+    if (files.every((f) => isModelFile(f.name))) {
+      // Models alone are added to the open scene, one after another.
+      void files.reduce<Promise<unknown>>((done, f) => done.then(() => addModelFile(app, f, (kept) => void autosave.keepFiles(app.scene, kept))), Promise.resolve());
+      return;
+    }
     const scene = files.find((f) => /\.json$/i.test(f.name)) ?? (files.length === 1 ? files[0] : undefined);
     if (!scene) {
       showIssues('These files', [{ path: '', message: 'none of them is a scene (.json): open the scene file together with its maps and models' }]);
@@ -197,10 +204,12 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader): void {
     option.textContent = name;
     examples.append(option);
   }
+  for (const name of Object.keys(MESH_EXAMPLES)) examples.append(new Option(name, name));
   examples.addEventListener('change', () => {
     const name = examples.value;
     examples.value = '';
     if (name in PRESETS) void loader.open(`The example "${name}"`, () => safeParseScene(PRESETS[name]));
+    if (name in MESH_EXAMPLES) void meshExampleFiles().then((files) => loader.open(`The example "${name}"`, () => safeParseScene(MESH_EXAMPLES[name]), files));
   });
 
   $('save-json').addEventListener('click', () => {

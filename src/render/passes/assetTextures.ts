@@ -9,7 +9,7 @@ import { buildEnvironmentDistribution, type EnvironmentDistribution } from '../.
 import type { SceneAssets } from '../../scene/assets';
 import { transformMesh } from '../../scene/mesh';
 import type { EnvironmentImage, Scene, TriangleMesh } from '../../scene/types';
-import { buildBvh, packBvh } from '../bvh';
+import { buildBvh, packBvh, type BvhMeshInput, type PackedBvh } from '../bvh';
 import { BvhTextures } from '../bvhTextures';
 import { EnvironmentTextures } from '../environmentTextures';
 import type { Program } from '../gl/program';
@@ -28,6 +28,34 @@ export function environmentDistribution(image: EnvironmentImage): EnvironmentDis
     distributions.set(image, distribution);
   }
   return distribution;
+}
+
+/** What the BVH of a scene's meshes depends on besides the decoded data: transforms and material slots. */
+function meshesKey(scene: Scene, materials: readonly number[]): string {
+  return JSON.stringify(scene.meshes.map((m, i) => [m.position, m.rotation, m.scale, materials[i]]));
+}
+
+/** The world-space triangles the BVH is built over. */
+export function bvhInputs(scene: Scene, assets: SceneAssets, materials: readonly number[]): BvhMeshInput[] {
+  return scene.meshes.map((mesh, i) => ({ ...transformMesh(assets.meshes.get(mesh.file)!, mesh), material: materials[i] }));
+}
+
+/**
+ * A BVH built ahead (by the page, in a worker: buildBvhAsync over
+ * bvhInputs) for exactly these meshes: the next setMeshes for them takes it
+ * instead of building on the calling thread. Only the latest is kept.
+ */
+let prebuilt: { key: string; data: TriangleMesh[]; packed: PackedBvh } | null = null;
+
+export function offerBvh(scene: Scene, assets: SceneAssets, materials: readonly number[], packed: PackedBvh): void {
+  prebuilt = { key: meshesKey(scene, materials), data: scene.meshes.map((m) => assets.meshes.get(m.file)!), packed };
+}
+
+function takePrebuilt(key: string, data: TriangleMesh[]): PackedBvh | null {
+  const ready = prebuilt;
+  if (!ready || ready.key !== key || ready.data.length !== data.length || !ready.data.every((d, i) => d === data[i])) return null;
+  prebuilt = null;
+  return ready.packed;
 }
 
 export class AssetTextures {
@@ -49,13 +77,16 @@ export class AssetTextures {
    */
   setMeshes(scene: Scene, assets: SceneAssets, materials: readonly number[]): void {
     const data = scene.meshes.map((mesh) => assets.meshes.get(mesh.file)!);
-    const key = JSON.stringify(scene.meshes.map((m, i) => [m.position, m.rotation, m.scale, materials[i]]));
+    const key = meshesKey(scene, materials);
     if (this.bvh && this.bvh.key === key && this.bvh.data.every((d, i) => d === data[i]) && data.length === this.bvh.data.length) return;
     this.bvh?.textures.dispose();
     this.bvh = null;
     if (data.length === 0) return;
-    const inputs = scene.meshes.map((mesh, i) => ({ ...transformMesh(data[i], mesh), material: materials[i] }));
-    const packed = packBvh(buildBvh(inputs), inputs);
+    let packed = takePrebuilt(key, data);
+    if (!packed) {
+      const inputs = bvhInputs(scene, assets, materials);
+      packed = packBvh(buildBvh(inputs), inputs);
+    }
     this.bvh = { key, data, textures: new BvhTextures(this.gl, packed) };
   }
 
