@@ -9,12 +9,13 @@ import type { Controller } from 'lil-gui';
 import { MAX_TRIANGLES } from '../render/bvh/pack';
 import { AssetError } from '../scene/assetError';
 import { MAX_MESHES } from '../scene/limits';
+import { formatIssue } from '../scene/schema';
 import { decodeMesh, encodePly, MESH_EXTENSIONS } from '../scene/mesh';
 import type { Mesh, TriangleMesh, Vec3 } from '../scene/types';
 import type { App } from './App';
 import { addSphereMaterialControls } from './materialControls';
 import { fitMesh, frameCamera, worldBoundingSphere } from './meshFit';
-import { clearError, showIssues } from './messages';
+import { clearError, showError } from './messages';
 import type { CompanionFiles } from './sceneLoader';
 
 export const isModelFile = (name: string) => MESH_EXTENSIONS.some((ext) => name.toLowerCase().endsWith(ext));
@@ -29,7 +30,8 @@ export type KeepFiles = (files: CompanionFiles) => void;
  */
 export async function addModelFile(app: App, file: File, keep: KeepFiles): Promise<boolean> {
   const fail = (message: string) => {
-    showIssues(`"${file.name}"`, [{ path: `meshes[${app.scene.meshes.length}].file`, message: `${JSON.stringify(file.name)}: ${message}` }]);
+    const issue = { path: `meshes[${app.scene.meshes.length}].file`, message: `${JSON.stringify(file.name)}: ${message}` };
+    showError(`The model "${file.name}" could not be added; the scene is unchanged.`, [formatIssue(issue)]);
     return false;
   };
   if (app.scene.meshes.length >= MAX_MESHES) return fail(`the scene already has ${MAX_MESHES} meshes, the most it can hold`);

@@ -74,7 +74,9 @@ export class MeshUploads {
     const state = meshState(scene, assets);
     if (state.key === this.uploadedKey || state.triangles <= ASYNC_BUILD_TRIANGLES) {
       this.uploadedKey = state.key;
-      this.tracer.setScene(scene, assets);
+      // A copy: the tracer re-uploads its scene on a resize, and the page's
+      // scene may by then hold edits whose BVH is still being built.
+      this.tracer.setScene(structuredClone(scene), assets);
       return;
     }
     // One build at a time: when it finishes, upload() runs again for the latest scene.
