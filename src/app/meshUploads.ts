@@ -77,6 +77,7 @@ export class MeshUploads {
       // A copy: the tracer re-uploads its scene on a resize, and the page's
       // scene may by then hold edits whose BVH is still being built.
       this.tracer.setScene(structuredClone(scene), assets);
+      showState(this.building ? 'building' : 'ready');
       return;
     }
     // One build at a time: when it finishes, upload() runs again for the latest scene.
@@ -86,18 +87,26 @@ export class MeshUploads {
 
   private build(snapshot: Scene, assets: SceneAssets, state: MeshState): void {
     this.building = state.key;
+    showState('building');
     const started = performance.now();
     buildBvhAsync(bvhInputs(snapshot, assets, state.materials)).then(
       (packed) => {
         this.lastBuildMs = performance.now() - started;
+        if (typeof document !== 'undefined') document.body.dataset.meshBuildMs = this.lastBuildMs.toFixed(0);
         offerBvh(snapshot, assets, state.materials, packed);
         this.building = null;
         this.upload();
       },
       (error: Error) => {
         this.building = null;
+        showState('failed');
         this.onError(`The meshes could not be prepared for rendering: ${error.message}`);
       },
     );
   }
+}
+
+/** For tests and benchmarks: whether the image shows the latest meshes (body[data-meshes]). */
+function showState(state: 'building' | 'ready' | 'failed'): void {
+  if (typeof document !== 'undefined') document.body.dataset.meshes = state;
 }
