@@ -85,6 +85,20 @@ export class MeshUploads {
     this.build(structuredClone(scene), assets, state);
   }
 
+  /**
+   * When the meshes moved again during a build (a drag), shows the built step
+   * at once, so a long drag updates the image after every build rather than
+   * only when it stops; the page's other edits go with it when they leave
+   * the meshes' material slots as built. upload() then builds for the latest.
+   */
+  private showBuilt(snapshot: Scene, key: string): void {
+    const { scene, assets } = this.current();
+    if (meshState(scene, assets).key === key) return; // upload() takes it
+    const mixed = { ...structuredClone(scene), meshes: snapshot.meshes };
+    this.uploadedKey = key;
+    this.tracer.setScene(meshState(mixed, assets).key === key ? mixed : snapshot, assets);
+  }
+
   private build(snapshot: Scene, assets: SceneAssets, state: MeshState): void {
     this.building = state.key;
     showState('building');
@@ -95,6 +109,7 @@ export class MeshUploads {
         if (typeof document !== 'undefined') document.body.dataset.meshBuildMs = this.lastBuildMs.toFixed(0);
         offerBvh(snapshot, assets, state.materials, packed);
         this.building = null;
+        this.showBuilt(snapshot, state.key);
         this.upload();
       },
       (error: Error) => {
