@@ -51,7 +51,7 @@ async function main(argv: string[]): Promise<void> {
     await page.addInitScript(recordFrames);
     await page.goto(`${server.url}?maxwidth=512`);
     await page.waitForFunction(() => Number(document.querySelector('[data-testid="spp"]')?.textContent) >= 2, undefined, { timeout: 120_000 });
-    const res = await page.getByTestId('resolution').textContent();
+    const res = await page.locator('#resolution').textContent();
     let t0 = await now(page);
     await page.waitForTimeout(seconds * 1000);
     console.log(`seed scene at ${res}: ${await gaps(page, t0, await now(page))}`);
@@ -61,7 +61,8 @@ async function main(argv: string[]): Promise<void> {
     await page.waitForFunction(() => document.body.dataset.meshes === 'building', undefined, { timeout: 300_000 });
     const t1 = await now(page);
     console.log(`opening the ${(ply.length / 2 ** 20).toFixed(1)} MB PLY until its BVH build starts: ${((t1 - t0) / 1000).toFixed(1)} s; ${await gaps(page, t0, t1)}`);
-    await page.waitForFunction(() => document.body.dataset.meshes === 'ready', undefined, { timeout: 600_000 });
+    await page.waitForFunction(() => document.body.dataset.meshes !== 'building', undefined, { timeout: 600_000 });
+    if ((await page.evaluate(() => document.body.dataset.meshes)) !== 'ready') throw new Error(`the BVH build failed: ${await page.getByTestId('error').textContent()}`);
     const t2 = await now(page);
     const buildMs = await page.evaluate(() => document.body.dataset.meshBuildMs);
     console.log(`BVH build in the worker: ${((t2 - t1) / 1000).toFixed(1)} s (worker ${buildMs} ms); frames meanwhile: ${await gaps(page, t1, t2)}`);
@@ -71,7 +72,7 @@ async function main(argv: string[]): Promise<void> {
     await page.waitForTimeout(seconds * 1000);
     const t4 = await now(page);
     const spp = await page.getByTestId('spp').textContent();
-    console.log(`rendering ${triangles} triangles at ${await page.getByTestId('resolution').textContent()}: ${await gaps(page, t3, t4)}; ${spp} spp`);
+    console.log(`rendering ${triangles} triangles at ${await page.locator('#resolution').textContent()}: ${await gaps(page, t3, t4)}; ${spp} spp`);
   } finally {
     await browser.close();
     await server.close();

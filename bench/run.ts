@@ -211,7 +211,9 @@ function benchMitsuba(
       encoding: 'utf8',
       stdio: ['ignore', 'pipe', 'inherit'],
     });
-    const info = JSON.parse(stdout.trim().split('\n').pop()!) as { spp: number; seconds: number; cpu_seconds: number };
+    // The last line is the JSON summary; Mitsuba's own warnings (coloured) may share its start.
+    const last = stdout.trim().split('\n').pop()!;
+    const info = JSON.parse(last.slice(last.indexOf('{'))) as { spp: number; seconds: number; cpu_seconds: number };
     const pfm = decodePfm(readFileSync(out));
     checkpoints.push({ seconds: info.seconds, spp: info.spp, relMse: score({ ...size, channels: 3, data: pfm.rgb }) });
     cpuSeconds.push(info.cpu_seconds);

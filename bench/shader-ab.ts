@@ -81,7 +81,7 @@ function variantSource(spec: string, root: URL): string {
   // The generated chunks come from this build; every other chunk from the variant's directory.
   const chunks = assembleChunks(TRACE_CHUNK_NAMES, (name) => readFileSync(new URL(name, base), 'utf8'));
   // One caustic guide, no glass: the seed scene's program.
-  const defines = { ...sceneDefines(), ...featureDefines({ guides: 1, dielectric: false, environmentMap: false, meshes: false }) };
+  const defines = { ...sceneDefines(), ...featureDefines({ guides: 1, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false }) };
   let text = buildShader(chunks, defines).text;
   for (const p of patches) {
     const edits = PATCHES[p];

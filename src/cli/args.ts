@@ -29,6 +29,8 @@ export interface RawRenderOptions {
   height?: string;
   exposure?: string;
   tonemap?: string;
+  /** --denoise (commander gives true when present). */
+  denoise?: boolean;
 }
 
 /** How long to render: a fixed sample count, or a time budget. */
@@ -42,6 +44,8 @@ export interface RenderArgs {
   height?: number;
   exposure: number;
   toneMap: string;
+  /** Denoise the final image (PNG and --hdr); default false: the unbiased estimate. */
+  denoise: boolean;
 }
 
 const INTEGER = /^\+?\d+$/;
@@ -111,7 +115,7 @@ export function parseRenderArgs(raw: RawRenderOptions, tonemaps: readonly string
     problems.push(`--tonemap: must be one of ${tonemaps.join(', ')} ${got(tonemap)}`);
   }
   if (problems.length > 0) throw usageError(problems);
-  return { budget: budget!, seed: seed!, width, height, exposure: exposure!, toneMap: tonemap };
+  return { budget: budget!, seed: seed!, width, height, exposure: exposure!, toneMap: tonemap, denoise: raw.denoise === true };
 }
 
 function parseTime(raw: string): number {

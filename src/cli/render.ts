@@ -12,12 +12,13 @@ import { parseRenderArgs, resolveSize, type Budget, type RawRenderOptions, type 
 import { CliError, EXIT_INTERRUPTED, failure, firstLine, oneLine, usageError } from './errors';
 import { checkWritable, defaultPngPath, writeOutputs } from './output';
 import { encodePfm } from '../image/pfm';
+import { denoiseFinalImage, type DenoiseSession } from './denoise';
 import { encodePng } from './png';
 import { createProgress, formatRate, type Progress, type ProgressStream } from './progress';
 import { loadSceneFile, loadSceneFiles } from './validate';
 
-/** The part of a RenderSession the CLI uses. */
-export type CliSession = Pick<RenderSession, 'load' | 'render' | 'readLinear' | 'readDisplayed' | 'close'>;
+/** The part of a RenderSession the CLI uses (the denoiser's part only with --denoise). */
+export type CliSession = Pick<RenderSession, 'load' | 'render' | 'readLinear' | 'readDisplayed' | 'close'> & Partial<DenoiseSession>;
 
 /** What render needs from src/node/session.ts; injected in tests. */
 export interface SessionModule {
@@ -161,6 +162,11 @@ async function renderImages(
   progress.start();
   const { spp, seconds } = await renderBudget(session, args.budget, progress, now);
   progress.stop();
+  if (args.denoise) {
+    progress.status('denoising...');
+    const denoised = await denoiseFinalImage(session, size, { exposure: args.exposure, toneMap: args.toneMap });
+    return { ...denoised, spp, seconds };
+  }
   const pixels = size.width * size.height;
   const displayed = await session.readDisplayed({ exposure: args.exposure, toneMap: args.toneMap });
   checkLength('displayed image', displayed.length, pixels * 4);

@@ -9,22 +9,22 @@ import fullscreenVert from '../shaders/fullscreen.vert?raw';
 import { Program } from '../render/gl/program';
 import { FloatTarget } from '../render/gl/targets';
 import { createContext } from '../render/gl/context';
-import { BvhTextures, bvhDefines, uploadFloatTexture } from '../render/bvhTextures';
-import { BVH_TEXTURE_WIDTH, type PackedBvh } from '../render/bvh/pack';
+import { BvhTextures, bvhDefines, uploadFloatTextureArray } from '../render/bvhTextures';
+import { bvhTexture, type LayeredTextureData, type PackedBvh } from '../render/bvh/pack';
 import { buildBvhAsync } from '../render/bvh/buildAsync';
 import { decodeMesh } from '../scene/mesh';
 
 export interface BvhTraceRequest {
-  /** base64 of the packed texture data, with their sizes. */
+  /** base64 of the packed texture data; empty = the BVH last built by buildInWorker (large meshes). */
   nodes: string;
-  nodesHeight: number;
   triangles: string;
-  trianglesHeight: number;
   /** base64 Float32Array, 8 floats per ray: origin, tMax, direction, 0. */
   rays: string;
   /** Rays per row of the output (width); rays.length / 8 / width rows. */
   width: number;
   mode: 'closest' | 'any' | 'surface';
+  /** Extra timed draws after the first (for bench/bvh-trace.ts): then the result is their mean time in ms, as text. */
+  timedDraws?: number;
 }
 
 const MODES = { closest: 0, any: 1, surface: 2 } as const;
@@ -40,6 +40,15 @@ function toBase64(data: Float32Array): string {
   return btoa(binary);
 }
 
+let lastBuilt: PackedBvh | null = null;
+
+/** Texel data (base64) in the BVH textures' layout, padded as packBvh pads it. */
+function asTexture(base64: string): LayeredTextureData {
+  const data = fromBase64(base64);
+  const texture = bvhTexture(data.length / 4);
+  texture.data.set(data);
+  return texture;
+}
 let context: { gl: WebGL2RenderingContext; program: Program } | null = null;
 
 function kernelContext() {
@@ -60,28 +69,31 @@ function kernelContext() {
 /** Traces the request's rays; returns RGBA float32 per ray (closest: triangle, t, b1, b2; any: hit; surface: shading normal, material). */
 export function traceBvh(request: BvhTraceRequest): string {
   const { gl, program } = kernelContext();
-  const width = BVH_TEXTURE_WIDTH;
-  const packed = {
-    nodes: { data: fromBase64(request.nodes), width, height: request.nodesHeight },
-    triangles: { data: fromBase64(request.triangles), width, height: request.trianglesHeight },
-  } as PackedBvh;
-  const rayData = fromBase64(request.rays);
-  const rayCount = rayData.length / 8;
+  const packed = request.nodes === '' && lastBuilt ? lastBuilt : ({ nodes: asTexture(request.nodes), triangles: asTexture(request.triangles) } as PackedBvh);
+  const rayCount = fromBase64(request.rays).length / 8;
   const rows = Math.ceil(rayCount / request.width);
-  const rayTexels = new Float32Array(width * Math.ceil((rayCount * 2) / width) * 4);
-  rayTexels.set(rayData);
   const textures = new BvhTextures(gl, packed);
-  const rays = uploadFloatTexture(gl, { data: rayTexels, width, height: rayTexels.length / 4 / width });
+  const rays = uploadFloatTextureArray(gl, asTexture(request.rays));
   const target = new FloatTarget(gl, request.width, rows);
   try {
     program.use();
     textures.bind(program, { nodes: 0, triangles: 1 });
     gl.activeTexture(gl.TEXTURE2);
-    gl.bindTexture(gl.TEXTURE_2D, rays);
-    program.setUniforms({ uRays: 2, uMode: MODES[request.mode], uGridWidth: request.width }, { uRays: 'sampler2D', uMode: 'int', uGridWidth: 'int' });
+    gl.bindTexture(gl.TEXTURE_2D_ARRAY, rays);
+    program.setUniforms({ uRays: 2, uMode: MODES[request.mode], uGridWidth: request.width }, { uRays: 'int', uMode: 'int', uGridWidth: 'int' });
     gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
     gl.viewport(0, 0, request.width, rows);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
+    if (request.timedDraws) {
+      target.read(); // waits for the first draw (compile, upload)
+      const start = performance.now();
+      for (let i = 0; i < request.timedDraws; i++) {
+        gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer); // read() unbinds it
+        gl.drawArrays(gl.TRIANGLES, 0, 3);
+        target.read(); // one draw at a time, finished
+      }
+      return String((performance.now() - start) / request.timedDraws);
+    }
     const error = gl.getError();
     if (error !== gl.NO_ERROR) throw new Error(`bvh kernel: WebGL error 0x${error.toString(16)}`);
     return toBase64(target.read().subarray(0, rayCount * 4));
@@ -92,12 +104,16 @@ export function traceBvh(request: BvhTraceRequest): string {
   }
 }
 
-/** Builds a BVH in the page's worker over one mesh (base64 Float32 positions, Uint32 indices); returns the packed nodes and triangles (base64). */
-export async function buildInWorker(positions: string, indices: string, material: number): Promise<{ nodes: string; triangles: string; depth: number }> {
+/** Builds a BVH in the page's worker over one mesh (base64 Float32 positions and normals or null, Uint32 indices); returns the packed nodes and triangles (base64). */
+export async function buildInWorker(positions: string, normals: string | null, indices: string, material: number, summaryOnly = false): Promise<{ nodes: string; triangles: string; depth: number; milliseconds: number }> {
+  const start = performance.now();
   const index = fromBase64(indices);
-  const mesh = { positions: fromBase64(positions), normals: null, indices: new Uint32Array(index.buffer), material };
+  const mesh = { positions: fromBase64(positions), normals: normals === null ? null : fromBase64(normals), indices: new Uint32Array(index.buffer), material };
   const packed = await buildBvhAsync([mesh]);
-  return { nodes: toBase64(packed.nodes.data), triangles: toBase64(packed.triangles.data), depth: packed.depth };
+  lastBuilt = packed;
+  const milliseconds = performance.now() - start;
+  if (summaryOnly) return { nodes: '', triangles: '', depth: packed.depth, milliseconds };
+  return { nodes: toBase64(packed.nodes.data), triangles: toBase64(packed.triangles.data), depth: packed.depth, milliseconds };
 }
 
 /** Decodes a mesh file in the page (base64 bytes); returns its arrays as base64, or the AssetError's message. */

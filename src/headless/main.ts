@@ -16,6 +16,8 @@ import { Program, ShaderCompileError } from '../render/gl/program';
 import { sceneDefines } from '../render/shaderChunks';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/shaderSources';
 import './bvhKernels'; // window.pathtraceBvh: the BVH traversal kernel for test/browser/bvh-*.test.ts
+import { denoiseArrays, fromBase64, type DenoiseRequest, type DenoiseResult } from './denoise';
+import { displayLinear } from './displayLinear';
 
 export interface LoadOptions {
   width: number;
@@ -42,6 +44,17 @@ export interface HeadlessApi {
   runKernel(request: KernelRequest): string;
   /** Compiles `source` as a fragment-shader chunk named `name` after the common chunks; the error log, or null. */
   compileLog(name: string, source: string): string | null;
+  /** Denoises base64 float32 arrays handed in (src/headless/denoise.ts). */
+  denoise(request: DenoiseRequest): Promise<DenoiseResult>;
+  /** The tracer's guides (albedo, normal: base64 float32 RGBA rows top to bottom); throws if this tracer has none. */
+  readAovs(): { albedo: string; normal: string };
+  /** A linear RGBA image (base64 float32) through the display pass: base64 RGBA8 sRGB. */
+  displayLinear(linear: string, width: number, height: number, options: DisplayOptions): string;
+}
+
+/** What the denoiser needs from the tracer (issue 12): guide buffers like readLinear(). */
+interface TracerWithAovs {
+  readAovs?(): { albedo: Float32Array; normal: Float32Array };
 }
 
 let tracer: PathTracer | null = null;
@@ -52,7 +65,8 @@ function requireTracer(): PathTracer {
   return tracer;
 }
 
-function fromBase64(text: string): Uint8Array {
+
+function bytesFromBase64(text: string): Uint8Array {
   const binary = atob(text);
   const bytes = new Uint8Array(binary.length);
   for (let i = 0; i < binary.length; i++) bytes[i] = binary.charCodeAt(i);
@@ -79,7 +93,7 @@ const api: HeadlessApi = {
   async load(scene, options, files = {}) {
     const assets = await loadSceneAssets(scene, async (name) => {
       if (!(name in files)) throw new Error('no such file was given to the page');
-      return fromBase64(files[name]);
+      return bytesFromBase64(files[name]);
     });
     tracer?.dispose();
     tracer = new PathTracer(undefined, scene, { ...options, assets });
@@ -125,6 +139,19 @@ const api: HeadlessApi = {
       if (error instanceof ShaderCompileError) return error.message;
       throw error;
     }
+  },
+  denoise: denoiseArrays,
+  readAovs() {
+    const t = requireTracer() as PathTracer & TracerWithAovs;
+    if (typeof t.readAovs !== 'function') {
+      throw new Error('readAovs: this PathTracer has no guide buffers (albedo/normal AOVs) yet, so it cannot denoise');
+    }
+    const { albedo, normal } = t.readAovs();
+    const encode = (f: Float32Array) => toBase64(new Uint8Array(f.buffer, f.byteOffset, f.byteLength));
+    return { albedo: encode(albedo), normal: encode(normal) };
+  },
+  displayLinear(linear, width, height, options) {
+    return toBase64(displayLinear(fromBase64(linear), width, height, options));
   },
 };
 

@@ -11,6 +11,7 @@ import { TONEMAPS } from '../render/toneMaps';
 import type { Scene } from '../scene/types';
 import type { HeadlessApi, LoadOptions } from '../headless/main';
 import type { KernelRequest } from '../headless/kernels';
+import type { DenoiseRequest } from '../headless/denoise';
 import { serveDirectory, type StaticServer } from './server';
 
 export { TONEMAPS };
@@ -84,6 +85,28 @@ export interface RenderSession {
   runKernel(request: KernelRequest): Promise<Float32Array>;
   /** The compile log of a fragment-shader chunk (after the common chunks), or null if it compiles. */
   compileLog(name: string, source: string): Promise<string | null>;
+  /** Denoises linear RGBA arrays (rows top to bottom) in the page with src/denoise. */
+  denoise(input: DenoiseArrays, options?: DenoiseRequest['options']): Promise<DenoiseOutcome>;
+  /** The tracer's albedo and normal guides, RGBA float32 rows top to bottom (needs PathTracer.readAovs()). */
+  readAovs(): Promise<{ albedo: Float32Array; normal: Float32Array }>;
+  /** A linear RGBA image through the page's display pass, as readDisplayed() shows the tracer's. */
+  displayLinear(linear: Float32Array, width: number, height: number, options: { exposure: number; toneMap: string }): Promise<Uint8Array>;
+}
+
+export interface DenoiseArrays {
+  width: number;
+  height: number;
+  color: Float32Array;
+  albedo: Float32Array;
+  normal: Float32Array;
+}
+
+export interface DenoiseOutcome {
+  data: Float32Array;
+  milliseconds: number;
+  setupMilliseconds: number;
+  backend: string;
+  longestMainThreadGap: number;
 }
 
 /** The built page directory: dist/web next to the bundled CLI, or from the sources. */
@@ -172,6 +195,22 @@ function createSession(page: Page, browser: Browser, server: StaticServer, pageE
     compileLog: (name, source) => call('compileLog', name, source),
     async runKernel(request) {
       return toFloat32(await call('runKernel', request));
+    },
+    async denoise(input, options) {
+      const base64 = (f: Float32Array) => Buffer.from(f.buffer, f.byteOffset, f.byteLength).toString('base64');
+      const { width, height } = input;
+      const request = { width, height, color: base64(input.color), albedo: base64(input.albedo), normal: base64(input.normal), options };
+      const result = await call('denoise', request);
+      return { ...result, data: toFloat32(result.data) };
+    },
+    async readAovs() {
+      const { albedo, normal } = await call('readAovs');
+      return { albedo: toFloat32(albedo), normal: toFloat32(normal) };
+    },
+    async displayLinear(linear, width, height, options) {
+      const toneMap = options.toneMap as DisplayOptions['toneMap'];
+      const encoded = Buffer.from(linear.buffer, linear.byteOffset, linear.byteLength).toString('base64');
+      return new Uint8Array(Buffer.from(await call('displayLinear', encoded, width, height, { exposure: options.exposure, toneMap }), 'base64'));
     },
     async close() {
       await browser.close();

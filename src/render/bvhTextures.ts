@@ -1,16 +1,16 @@
 /**
- * The packed BVH (src/render/bvh/pack.ts) as two RGBA32F textures for
+ * The packed BVH (src/render/bvh/pack.ts) as two RGBA32F 2D array textures for
  * src/shaders/scene/bvh.glsl: `uBvhNodes` and `uBvhTriangles`. Upload once
  * per scene; bind to two texture units before each draw with a program
  * that includes bvh.glsl (compiled with `bvhDefines()`).
  */
 import type { Program } from './gl/program';
-import { BVH_TEXTURE_WIDTH, type PackedBvh, type TextureData } from './bvh/pack';
+import { BVH_LAYER_ROWS, BVH_TEXTURE_WIDTH, type LayeredTextureData, type PackedBvh, type TextureData } from './bvh/pack';
 import { MAX_BVH_DEPTH } from './bvh/build';
 
 /** The #defines bvh.glsl expects (its defaults equal these; pass them to keep TS and GLSL in one place). */
 export function bvhDefines(): Record<string, number> {
-  return { BVH_TEXTURE_WIDTH_LOG2: Math.log2(BVH_TEXTURE_WIDTH), BVH_STACK_SIZE: MAX_BVH_DEPTH };
+  return { BVH_TEXTURE_WIDTH_LOG2: Math.log2(BVH_TEXTURE_WIDTH), BVH_LAYER_ROWS_LOG2: Math.log2(BVH_LAYER_ROWS), BVH_STACK_SIZE: MAX_BVH_DEPTH };
 }
 
 export class BvhTextures {
@@ -21,24 +21,19 @@ export class BvhTextures {
     private readonly gl: WebGL2RenderingContext,
     packed: PackedBvh,
   ) {
-    const maxSize = gl.getParameter(gl.MAX_TEXTURE_SIZE) as number;
-    for (const [name, data] of [['nodes', packed.nodes], ['triangles', packed.triangles]] as const) {
-      if (data.width > maxSize || data.height > maxSize) {
-        throw new Error(`the BVH ${name} need a ${data.width}x${data.height} texture; this GPU allows ${maxSize}x${maxSize} (too many triangles)`);
-      }
-    }
-    this.nodes = uploadFloatTexture(gl, packed.nodes);
-    this.triangles = uploadFloatTexture(gl, packed.triangles);
+    this.nodes = uploadFloatTextureArray(gl, packed.nodes);
+    this.triangles = uploadFloatTextureArray(gl, packed.triangles);
   }
 
   /** Binds the textures to the given units and points the program's samplers at them (the program must be in use). */
   bind(program: Program, units: { nodes: number; triangles: number }): void {
     const gl = this.gl;
     gl.activeTexture(gl.TEXTURE0 + units.nodes);
-    gl.bindTexture(gl.TEXTURE_2D, this.nodes);
+    gl.bindTexture(gl.TEXTURE_2D_ARRAY, this.nodes);
     gl.activeTexture(gl.TEXTURE0 + units.triangles);
-    gl.bindTexture(gl.TEXTURE_2D, this.triangles);
-    program.setUniforms({ uBvhNodes: units.nodes, uBvhTriangles: units.triangles }, { uBvhNodes: 'sampler2D', uBvhTriangles: 'sampler2D' });
+    gl.bindTexture(gl.TEXTURE_2D_ARRAY, this.triangles);
+    // The sampler uniforms take a unit number, as sampler2D's do.
+    program.setUniforms({ uBvhNodes: units.nodes, uBvhTriangles: units.triangles }, { uBvhNodes: 'int', uBvhTriangles: 'int' });
   }
 
   dispose(): void {
@@ -47,7 +42,10 @@ export class BvhTextures {
   }
 }
 
-/** An RGBA32F texture of `data`, nearest filtering (read with texelFetch). */
+/**
+ * An RGBA32F 2D texture of `data` (BVH_TEXTURE_WIDTH wide for bvhTexel's
+ * sampler2D overload), nearest filtering (read with texelFetch).
+ */
 export function uploadFloatTexture(gl: WebGL2RenderingContext, data: TextureData): WebGLTexture {
   const texture = gl.createTexture()!;
   gl.bindTexture(gl.TEXTURE_2D, texture);
@@ -56,5 +54,17 @@ export function uploadFloatTexture(gl: WebGL2RenderingContext, data: TextureData
   // RGBA32F is not filterable in WebGL2: every read is a texelFetch.
   gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
   gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+  return texture;
+}
+
+/** An RGBA32F 2D array texture of `data`, nearest filtering (read with texelFetch). */
+export function uploadFloatTextureArray(gl: WebGL2RenderingContext, data: LayeredTextureData): WebGLTexture {
+  const texture = gl.createTexture()!;
+  gl.bindTexture(gl.TEXTURE_2D_ARRAY, texture);
+  gl.texStorage3D(gl.TEXTURE_2D_ARRAY, 1, gl.RGBA32F, data.width, data.height, data.layers);
+  gl.texSubImage3D(gl.TEXTURE_2D_ARRAY, 0, 0, 0, 0, data.width, data.height, data.layers, gl.RGBA, gl.FLOAT, data.data);
+  // RGBA32F is not filterable in WebGL2: every read is a texelFetch.
+  gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+  gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
   return texture;
 }

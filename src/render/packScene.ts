@@ -10,7 +10,7 @@ import type { Material, Scene, Vec3 } from '../scene/types';
 import { buildAliasTable } from './aliasTable';
 import { selectCausticGuides, type GuideSphere } from './causticGuides';
 import {
-  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MATERIAL_TYPES, SECTIONS, SPHERE,
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MATERIAL_TYPES, MESH, SECTIONS, SPHERE,
 } from './layout/scene';
 import { packRecord } from './layout/records';
 
@@ -22,12 +22,23 @@ export interface SceneFeatures {
   environmentMap: boolean;
   /** Triangle meshes (the BVH traversal). */
   meshes: boolean;
+  /** Emissive meshes (light sampling of their triangles). */
+  emissiveMeshes: boolean;
 }
 
 /** What packing needs to know of the scene's decoded files. */
 export interface PackOptions {
   /** The integral of the environment map's luminance over the sphere (its distribution's), when the scene has one. */
   environmentIntegral?: number;
+  /** World-space surface area and triangle count of each of scene.meshes (decoded and transformed). */
+  meshes?: readonly { area: number; triangles: number }[];
+}
+
+/** The emissive-triangle slots of an emissive mesh (see layout/scene.ts EMITTER). */
+export interface MeshEmitterSlots {
+  mesh: number;
+  first: number;
+  count: number;
 }
 
 export interface PackedScene {
@@ -38,6 +49,8 @@ export interface PackedScene {
   features: SceneFeatures;
   /** The material-table index of each of scene.meshes (every triangle of a mesh carries it). */
   meshMaterials: number[];
+  /** The emissive meshes' triangle slots, in slot order. */
+  meshEmitters: MeshEmitterSlots[];
 }
 
 interface SceneSphere extends GuideSphere {
@@ -54,7 +67,12 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
   const spheres = sceneSpheres(scene);
   const emitters = spheres.flatMap((s, index) => (power(s) > 0 ? [{ index, sphere: s }] : []));
   const environmentPower = mapEnvironmentPower(scene, spheres, options.environmentIntegral);
-  const powers = [...emitters.map((e) => power(e.sphere)), ...(environmentPower > 0 ? [environmentPower] : [])];
+  const meshEmitters = emissiveMeshes(scene, options.meshes ?? []);
+  const powers = [
+    ...emitters.map((e) => power(e.sphere)),
+    ...(environmentPower > 0 ? [environmentPower] : []),
+    ...meshEmitters.map((m) => m.power),
+  ];
   const alias = buildAliasTable(powers);
   const emitterPdf = new Map(emitters.map((e, i) => [e.index, alias.pdf[i]]));
 
@@ -78,6 +96,13 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     const record = packRecord(EMITTER, { pdf: alias.pdf[emitters.length], kind: EMITTER_KINDS.environment, primitive: -1 });
     data.set(record, (SECTIONS.emitters + emitters.length * EMITTER.texels) * 4);
   }
+  const firstMesh = emitters.length + (environmentPower > 0 ? 1 : 0);
+  meshEmitters.forEach((m, i) => {
+    const pdf = alias.pdf[firstMesh + i];
+    const record = packRecord(EMITTER, { radiance: m.radiance, pdf, kind: EMITTER_KINDS.mesh, primitive: m.mesh, first: m.first, count: m.count });
+    data.set(record, (SECTIONS.emitters + (firstMesh + i) * EMITTER.texels) * 4);
+    data.set(packRecord(MESH, { areaPdf: pdf / m.area }), (SECTIONS.meshes + m.mesh * MESH.texels) * 4);
+  });
   powers.forEach((_, i) => {
     const choice = packRecord(EMITTER_CHOICE, { aliasThreshold: alias.threshold[i], alias: alias.alias[i] });
     data.set(choice, (SECTIONS.emitterChoices + i * EMITTER_CHOICE.texels) * 4);
@@ -110,8 +135,14 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     spheres.some((s) => s.material !== 'emitterOnly' && s.material.type === 'dielectric') ||
     scene.meshes.some((m) => m.material.type === 'dielectric');
   const environmentMap = environment !== null && 'map' in environment;
-  const features = { guides: guides.length, dielectric, environmentMap, meshes: scene.meshes.length > 0 };
-  return { data, block, features, meshMaterials };
+  const features = {
+    guides: guides.length,
+    dielectric,
+    environmentMap,
+    meshes: scene.meshes.length > 0,
+    emissiveMeshes: meshEmitters.length > 0,
+  };
+  return { data, block, features, meshMaterials, meshEmitters: meshEmitters.map(({ mesh, first, count }) => ({ mesh, first, count })) };
 }
 
 /** The scene's spheres in shader order: `spheres`, then `lights` as emitter-only spheres. */
@@ -164,5 +195,22 @@ function mapEnvironmentPower(scene: Scene, spheres: readonly SceneSphere[], inte
 }
 
 const luminance = (c: Vec3) => 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+
+/**
+ * Meshes whose material emits, with their power (pi * area * luminance: one
+ * side emits) and their triangles' slots in the emissive-triangle texture.
+ */
+function emissiveMeshes(scene: Scene, sizes: readonly { area: number; triangles: number }[]) {
+  let first = 0;
+  return scene.meshes.flatMap((mesh, i) => {
+    const radiance = emittedRadiance(mesh.material);
+    const size = sizes[i];
+    const power = size ? Math.PI * size.area * luminance(radiance) : 0;
+    if (!(power > 0)) return [];
+    const slots = { mesh: i, first, count: size.triangles, area: size.area, power, radiance };
+    first += size.triangles;
+    return [slots];
+  });
+}
 
 const scale = (v: Vec3, s: number): Vec3 => [v[0] * s, v[1] * s, v[2] * s];

@@ -28,6 +28,7 @@ export const SCENE_CHUNK_NAMES = [
   'bsdf/bsdf.glsl',
   'lights/sphere_emitter.glsl',
   'lights/environment_map.glsl',
+  'lights/mesh_emitter.glsl',
   'lights/lights.glsl',
   'lights/caustic_guide.glsl',
 ];
@@ -61,5 +62,6 @@ export function featureDefines(features: SceneFeatures): Record<string, number> 
     HAS_DIELECTRIC: features.dielectric ? 1 : 0,
     HAS_ENV_MAP: features.environmentMap ? 1 : 0,
     HAS_MESHES: features.meshes ? 1 : 0,
+    HAS_EMISSIVE_MESHES: features.emissiveMeshes ? 1 : 0,
   };
 }

@@ -11,3 +11,5 @@ export * from './color';
 export * from './serialize';
 export * from './presets';
 export { requiredVersion } from './version';
+export { loadSceneAssets, assetReferences, missingAssets, NO_ASSETS, type SceneAssets, type AssetReader, type AssetReference } from './assets';
+export { AssetError } from './assetError';

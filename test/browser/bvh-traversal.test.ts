@@ -9,9 +9,9 @@
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { buildBvh, type BvhMeshInput } from '../../src/render/bvh/build';
-import { packBvh, type PackedBvh } from '../../src/render/bvh/pack';
+import { bvhBounds, packBvh, type PackedBvh } from '../../src/render/bvh/pack';
 import { buildAndPack } from '../../src/render/bvh/worker';
-import { bruteForce, type Vec3 } from '../../src/render/bvh/traverse';
+import { bruteForce, traverseBvh, type Vec3 } from '../../src/render/bvh/traverse';
 import { transformMesh } from '../../src/scene/mesh/transform';
 import { decodeMesh } from '../../src/scene/mesh';
 import type { BvhTraceRequest } from '../../src/headless/bvhKernels';
@@ -41,8 +41,7 @@ describe('GLSL BVH traversal', () => {
 
   async function trace(packed: PackedBvh, rays: Float32Array, mode: BvhTraceRequest['mode']): Promise<Float32Array> {
     const request: BvhTraceRequest = {
-      nodes: base64(packed.nodes.data), nodesHeight: packed.nodes.height,
-      triangles: base64(packed.triangles.data), trianglesHeight: packed.triangles.height,
+      nodes: base64(packed.nodes.data), triangles: base64(packed.triangles.data),
       rays: base64(rays), width: 64, mode,
     };
     const out = await session().page.evaluate((r) => window.pathtraceBvh.trace(r), request);
@@ -60,8 +59,7 @@ describe('GLSL BVH traversal', () => {
   function randomRays(packed: PackedBvh, count: number, seed: number): Float32Array {
     const r = random(seed);
     const tris = packed.triangles.data;
-    const lo = Array.from(packed.nodes.data.subarray(0, 3));
-    const hi = Array.from(packed.nodes.data.subarray(4, 7));
+    const [lo, hi] = bvhBounds(packed);
     const rays: Ray[] = [];
     for (let i = 0; i < count; i++) {
       const origin = [0, 1, 2].map((k) => lo[k] + (r() * 3 - 1) * (hi[k] - lo[k])) as unknown as Vec3;
@@ -145,11 +143,46 @@ describe('GLSL BVH traversal', () => {
   it('the page builds the same BVH in its Web Worker as Node does', async () => {
     const mesh = transformMesh(icosphere(4, false), { rotation: [10, 20, 30] });
     const b64 = (a: Float32Array | Uint32Array) => Buffer.from(a.buffer, a.byteOffset, a.byteLength).toString('base64');
-    const built = await session().page.evaluate(([p, i]) => window.pathtraceBvh.buildInWorker(p, i, 2), [b64(mesh.positions), b64(mesh.indices)] as const);
+    const built = await session().page.evaluate(([p, i]) => window.pathtraceBvh.buildInWorker(p, null, i, 2), [b64(mesh.positions), b64(mesh.indices)] as const);
     const expected = buildAndPack([{ ...mesh, material: 2 }]);
     expect(built.depth).toBe(expected.depth);
     expect(built.nodes).toBe(b64(expected.nodes.data));
     expect(built.triangles).toBe(b64(expected.triangles.data));
+  });
+
+  it('a 328k-triangle smooth icosphere (its triangle texture spans 2 layers): hits and normals as in TypeScript', async () => {
+    const mesh = transformMesh(icosphere(7, true), { rotation: [10, 20, 30] });
+    const b64 = (a: Float32Array | Uint32Array) => Buffer.from(a.buffer, a.byteOffset, a.byteLength).toString('base64');
+    const built = await session().page.evaluate(([p, n, i]) => window.pathtraceBvh.buildInWorker(p, n, i, 4, true), [b64(mesh.positions), b64(mesh.normals!), b64(mesh.indices)] as const);
+    const packed = buildAndPack([{ ...mesh, material: 4 }]);
+    expect(built.depth).toBe(packed.depth);
+    expect(packed.triangles.layers).toBe(2);
+    const r = random(5);
+    const rays: Ray[] = [];
+    for (let i = 0; i < 4096; i++) {
+      const origin = [0, 1, 2].map(() => (r() * 2 - 1) * 3) as unknown as Vec3;
+      rays.push({ origin, dir: [0, 1, 2].map((k) => (r() - 0.5) * 0.5 - origin[k]) as unknown as Vec3, tMax: 3.4e38 });
+    }
+    const data = rayData(rays);
+    const request = (mode: BvhTraceRequest['mode']): BvhTraceRequest => ({ nodes: '', triangles: '', rays: base64(data), width: 64, mode });
+    const hits = await session().page.evaluate((q) => window.pathtraceBvh.trace(q), request('closest')).then(floats);
+    const surfaces = await session().page.evaluate((q) => window.pathtraceBvh.trace(q), request('surface')).then(floats);
+    const tris = packed.triangles.data;
+    let laterLayers = 0;
+    for (let i = 0; i < rays.length; i++) {
+      const j = hits[i * 4];
+      expect(j, `ray ${i} hits`).toBeGreaterThanOrEqual(0);
+      const expected = traverseBvh(packed, f32Ray(data, i).origin, f32Ray(data, i).dir, Infinity)!;
+      expect(Math.abs(hits[i * 4 + 1] - expected.t)).toBeLessThanOrEqual(1e-4 * expected.t);
+      const [b1, b2] = [hits[i * 4 + 2], hits[i * 4 + 3]];
+      const k = tris[j * 12 + 7];
+      if (k >= 2 ** 20) laterLayers++; // normals start in layer 0 and end in layer 1
+      const n = [0, 1, 2].map((c) => (1 - b1 - b2) * tris[k * 4 + c] + b1 * tris[(k + 1) * 4 + c] + b2 * tris[(k + 2) * 4 + c]);
+      const length = Math.hypot(...n);
+      for (let c = 0; c < 3; c++) expect(Math.abs(surfaces[i * 4 + c] - n[c] / length)).toBeLessThan(1e-4);
+      expect(surfaces[i * 4 + 3]).toBe(4);
+    }
+    expect(laterLayers, 'normals read from layer 1').toBeGreaterThan(1000);
   });
 
   it('watertight: rays crossing an icosphere exactly at shared edges and vertices always hit', async () => {
@@ -214,6 +247,11 @@ describe('GLSL BVH traversal', () => {
     expect(missed.length, `missed rays (first: ${missed.slice(0, 5)})`).toBe(0);
   });
 });
+
+function floats(text: string): Float32Array {
+  const bytes = Buffer.from(text, 'base64');
+  return new Float32Array(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength));
+}
 
 /** t of `ray` on triangle j alone, or null. */
 function bruteForceOne(packed: PackedBvh, j: number, ray: Ray): number | null {

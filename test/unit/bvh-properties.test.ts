@@ -164,6 +164,23 @@ describe('BVH queries equal brute force', () => {
     );
   });
 
+  it('tiny BVHs (1, 2 and 3 triangles)', () => {
+    for (const count of [1, 2, 3]) {
+      const packed = build([triangleSoup(count, count, 1)]);
+      const r = random(count);
+      let hits = 0;
+      for (let i = 0; i < 300; i++) {
+        const j = Math.floor(r() * count) * 12;
+        const origin = vec(r, 3);
+        const target = [0, 1, 2].map((k) => (packed.triangles.data[j + k] + packed.triangles.data[j + 4 + k] + packed.triangles.data[j + 8 + k]) / 3);
+        const dir = [0, 1, 2].map((k) => target[k] - origin[k]) as unknown as Vec3;
+        expectSameHits(packed, origin, dir, Infinity);
+        if (traverseBvh(packed, origin, dir, Infinity)) hits++;
+      }
+      expect(hits).toBe(300);
+    }
+  });
+
   it('the bunny and an icosphere, from outside and inside', async () => {
     const bunny = await decodeMesh(new Uint8Array(readFileSync(new URL('../fixtures/meshes/bunny.ply', import.meta.url))), 'bunny.ply');
     const packed = build([{ ...bunny, material: 0 }, { ...icosphere(3, false), material: 1 }]);

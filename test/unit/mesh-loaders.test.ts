@@ -191,3 +191,23 @@ describe('bad files give an AssetError saying why', () => {
     expect(Array.from(mesh.indices)).toEqual([0, 1, 2, 0, 2, 3, 0, 1, 2, 0, 2, 3, 0, 3, 4]);
   });
 });
+
+describe('readMeshFile (the CLI side)', () => {
+  it('resolves a .gltf external buffer next to the file, and reports a missing one or a missing file', async () => {
+    const { mkdtempSync, writeFileSync } = await import('node:fs');
+    const { tmpdir } = await import('node:os');
+    const { join } = await import('node:path');
+    const { readMeshFile } = await import('../../src/node/readMesh');
+    const dir = mkdtempSync(join(tmpdir(), 'mesh-'));
+    const json = JSON.parse(readFileSync(new URL('ico-smooth.gltf', FIXTURES), 'utf8'));
+    const uri: string = json.buffers[0].uri;
+    writeFileSync(join(dir, 'ico data.bin'), Buffer.from(uri.slice(uri.indexOf(',') + 1), 'base64'));
+    json.buffers[0].uri = 'ico%20data.bin';
+    writeFileSync(join(dir, 'ico.gltf'), JSON.stringify(json));
+    expectSameTriangles(await readMeshFile(join(dir, 'ico.gltf')), icosphere(1, true), 0);
+    json.buffers[0].uri = 'gone.bin';
+    writeFileSync(join(dir, 'gone.gltf'), JSON.stringify(json));
+    await expect(readMeshFile(join(dir, 'gone.gltf'))).rejects.toThrow(/cannot read the glTF's buffer "gone.bin"/);
+    await expect(readMeshFile(join(dir, 'missing.obj'))).rejects.toThrow(/cannot read .*missing.obj: ENOENT/);
+  });
+});

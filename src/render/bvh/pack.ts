@@ -5,9 +5,12 @@
  * exact below 2^24, which the texture size caps anyway, and no denormal bit
  * patterns for a GPU to flush.
  *
- * Both textures are BVH_TEXTURE_WIDTH texels wide (a power of two, so the
- * shader maps an index to a texel with a mask and a shift), as many rows as
- * needed. Texel i is at (i % width, i / width).
+ * Both are 2D array textures BVH_TEXTURE_WIDTH (2048) texels wide and
+ * BVH_LAYER_ROWS (512) high, as many layers as needed (a single layer only
+ * as high as needed): texel i is at (i % 2048, (i / 2048) % 512, layer
+ * i / 2^20), masks and shifts in the shader. WebGL2 guarantees
+ * MAX_TEXTURE_SIZE >= 2048 and MAX_ARRAY_TEXTURE_LAYERS >= 256, so the layout
+ * works on every WebGL2 device; short layers waste at most 16 MB of padding.
  *
  * uBvhNodes: 2 texels per node, node i at texels 2i and 2i + 1:
  *   (min.xyz, a), (max.xyz, b)
@@ -18,30 +21,37 @@
  *   (v2.xyz, mesh index); a smooth triangle's vertex normals n0, n1, n2
  *   (unit, w = 0) follow all triangles, at its normals texel .. + 2.
  *
- * Limit: a texture holds at most BVH_TEXTURE_WIDTH * MAX_TEXTURE_SIZE texels.
- * With the WebGL2 minimum of 4096 rows that many GPUs exceed, 4096 * 4096 =
- * 16.7M texels: 2.79M smooth or 5.59M flat triangles (6 or 3 texels each).
+ * Limit: texel indices are stored as floats, exact up to 2^24 = 16.7M
+ * texels (16 layers): 2.79M smooth or 5.59M flat triangles in total (6 or 3
+ * texels each). Memory is 96 bytes per smooth triangle (48 flat) plus about
+ * 32 bytes per triangle for the nodes: ~125 MB for 1M smooth triangles.
  */
 import type { Bvh, BvhMeshInput } from './build';
 
-export const BVH_TEXTURE_WIDTH = 4096;
+export const BVH_TEXTURE_WIDTH = 2048;
+export const BVH_LAYER_ROWS = 512;
 export const BVH_NODE_TEXELS = 2;
 export const BVH_TRIANGLE_TEXELS = 3;
-/** Rows any WebGL2 device this renderer supports allows (MAX_TEXTURE_SIZE >= 4096 is checked at upload). */
-export const BVH_MAX_ROWS = 4096;
-/** The documented total: smooth triangles need 6 texels each. */
-export const MAX_TRIANGLES = Math.floor((BVH_TEXTURE_WIDTH * BVH_MAX_ROWS) / 6);
+/** Texel indices are floats in the textures: exact below 2^24. */
+export const BVH_MAX_TEXELS = 2 ** 24;
+/** The documented total (every triangle smooth: 6 texels each). */
+export const MAX_TRIANGLES = Math.floor(BVH_MAX_TEXELS / 6);
 
+/** A 2D RGBA32F texture's data: width * height * 4 floats. */
 export interface TextureData {
-  /** RGBA32F texels, width * height * 4 floats (padded). */
   data: Float32Array;
   width: number;
   height: number;
 }
 
+/** A 2D array texture's data (the BVH's): width * height * layers * 4 floats (padded). */
+export interface LayeredTextureData extends TextureData {
+  layers: number;
+}
+
 export interface PackedBvh {
-  nodes: TextureData;
-  triangles: TextureData;
+  nodes: LayeredTextureData;
+  triangles: LayeredTextureData;
   nodeCount: number;
   triangleCount: number;
   /** BVH triangle j -> input triangle id (meshes concatenated in input order). */
@@ -49,10 +59,12 @@ export interface PackedBvh {
   depth: number;
 }
 
-function texture(texels: number): TextureData {
+/** Storage for `texels` texels in the layout above. */
+export function bvhTexture(texels: number): LayeredTextureData {
   const width = BVH_TEXTURE_WIDTH;
-  const height = Math.max(1, Math.ceil(texels / width));
-  return { data: new Float32Array(width * height * 4), width, height };
+  const layers = Math.max(1, Math.ceil(texels / (width * BVH_LAYER_ROWS)));
+  const height = layers > 1 ? BVH_LAYER_ROWS : Math.max(1, Math.ceil(texels / width));
+  return { data: new Float32Array(width * height * layers * 4), width, height, layers };
 }
 
 export function packBvh(bvh: Bvh, meshes: BvhMeshInput[]): PackedBvh {
@@ -61,10 +73,10 @@ export function packBvh(bvh: Bvh, meshes: BvhMeshInput[]): PackedBvh {
   meshes.forEach((m, i) => (meshOf[i + 1] = meshOf[i] + m.indices.length / 3));
   const smoothCount = meshes.reduce((sum, m) => sum + (m.normals ? m.indices.length / 3 : 0), 0);
   const triangleTexels = n * BVH_TRIANGLE_TEXELS + smoothCount * 3;
-  if (triangleTexels > BVH_TEXTURE_WIDTH * BVH_MAX_ROWS) {
+  if (triangleTexels > BVH_MAX_TEXELS) {
     throw new Error(`${n} triangles exceed the BVH texture limit (${MAX_TRIANGLES} smooth triangles in total)`);
   }
-  const nodes = texture(bvh.nodeCount * BVH_NODE_TEXELS);
+  const nodes = bvhTexture(bvh.nodeCount * BVH_NODE_TEXELS);
   for (let i = 0; i < bvh.nodeCount; i++) {
     const o = i * 8;
     for (let k = 0; k < 3; k++) {
@@ -74,7 +86,7 @@ export function packBvh(bvh: Bvh, meshes: BvhMeshInput[]): PackedBvh {
     nodes.data[o + 3] = bvh.nodeData[i * 2];
     nodes.data[o + 7] = bvh.nodeData[i * 2 + 1];
   }
-  const triangles = texture(triangleTexels);
+  const triangles = bvhTexture(triangleTexels);
   const out = triangles.data;
   let normalTexel = n * BVH_TRIANGLE_TEXELS;
   let mesh = 0;
@@ -108,4 +120,10 @@ function findMesh(meshOf: Uint32Array, id: number, guess: number): number {
     else hi = mid - 1;
   }
   return lo;
+}
+
+/** The box around everything: the root node's (min xyz, max xyz). */
+export function bvhBounds(packed: PackedBvh): [number[], number[]] {
+  const d = packed.nodes.data;
+  return [[d[0], d[1], d[2]], [d[4], d[5], d[6]]];
 }

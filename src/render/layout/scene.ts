@@ -12,7 +12,7 @@ import { defineRecord, recordDefines, recordGlsl, type RecordLayout } from './re
 /** Material type tags (Material.type in GLSL). */
 export const MATERIAL_TYPES = { standard: 0, dielectric: 1, emitterOnly: 2 } as const;
 /** Emitter kinds (Emitter.kind in GLSL). */
-export const EMITTER_KINDS = { sphere: 0, environment: 1 } as const;
+export const EMITTER_KINDS = { sphere: 0, environment: 1, mesh: 2 } as const;
 
 /** A row of the material table: BSDF parameters and emission. */
 export const MATERIAL = defineRecord('Material', [
@@ -35,7 +35,12 @@ export const SPHERE = defineRecord('SphereRecord', [
   ['emitterPdf', 'float'],
 ]);
 
-/** An entry of the light-sampling table; `pdf` is the probability of picking it. */
+/**
+ * An entry of the light-sampling table; `pdf` is the probability of picking
+ * it. Spheres: centre and radius, `primitive` the sphere. Meshes: `primitive`
+ * the mesh, its emissive triangles the slots `first` .. `first + count - 1`
+ * of the emissive-triangle texture (lights/mesh_emitter.glsl).
+ */
 export const EMITTER = defineRecord('Emitter', [
   ['center', 'vec3'],
   ['radius', 'float'],
@@ -43,7 +48,15 @@ export const EMITTER = defineRecord('Emitter', [
   ['pdf', 'float'],
   ['kind', 'int'],
   ['primitive', 'int'],
+  ['first', 'int'],
+  ['count', 'int'],
 ]);
+
+/**
+ * A mesh: `areaPdf` is the density, per unit area, with which light sampling
+ * picks a point on it (0 when it does not emit), for the MIS weight of a hit.
+ */
+export const MESH = defineRecord('MeshRecord', [['areaPdf', 'float']]);
 
 /**
  * Slot i of the alias table (Walker) that picks emitters in proportion to
@@ -76,7 +89,7 @@ export const GUIDE_VEC4S = Object.keys(GUIDE_FIELDS).length;
 /** Lights become spheres; each sphere, light, mesh and the ground has its own material. */
 export const MAX_SCENE_SPHERES = MAX_SPHERES + MAX_LIGHTS;
 export const MAX_MATERIALS = MAX_SCENE_SPHERES + MAX_MESHES + 1;
-export const MAX_EMITTERS = MAX_SCENE_SPHERES + 1;
+export const MAX_EMITTERS = MAX_SCENE_SPHERES + 1 + MAX_MESHES;
 
 /** First texel of each table in the data texture. */
 export const SECTIONS = {
@@ -84,9 +97,11 @@ export const SECTIONS = {
   spheres: MAX_MATERIALS * MATERIAL.texels,
   emitters: MAX_MATERIALS * MATERIAL.texels + MAX_SCENE_SPHERES * SPHERE.texels,
   emitterChoices: MAX_MATERIALS * MATERIAL.texels + MAX_SCENE_SPHERES * SPHERE.texels + MAX_EMITTERS * EMITTER.texels,
+  meshes:
+    MAX_MATERIALS * MATERIAL.texels + MAX_SCENE_SPHERES * SPHERE.texels + MAX_EMITTERS * EMITTER.texels + MAX_EMITTERS * EMITTER_CHOICE.texels,
 } as const;
 /** Width of the data texture (one row). */
-export const DATA_TEXELS = SECTIONS.emitterChoices + MAX_EMITTERS * EMITTER_CHOICE.texels;
+export const DATA_TEXELS = SECTIONS.meshes + MAX_MESHES * MESH.texels;
 /** vec4s of the uniform block: the header, then the guides. */
 export const BLOCK_VEC4S = HEADER.texels + MAX_GUIDES * GUIDE_VEC4S;
 
@@ -99,12 +114,14 @@ export function sceneLayoutDefines(): Record<string, number> {
     ...recordDefines(SPHERE),
     ...recordDefines(EMITTER),
     ...recordDefines(EMITTER_CHOICE),
+    ...recordDefines(MESH),
     ...tagDefines('MATERIAL', MATERIAL_TYPES),
     ...tagDefines('EMITTER', EMITTER_KINDS),
     MATERIALS_FIRST: SECTIONS.materials,
     SPHERES_FIRST: SECTIONS.spheres,
     EMITTERS_FIRST: SECTIONS.emitters,
     EMITTER_CHOICES_FIRST: SECTIONS.emitterChoices,
+    MESHES_FIRST: SECTIONS.meshes,
     MAX_SCENE_SPHERES,
     HEADER_TEXELS: HEADER.texels,
     BLOCK_VEC4S,
@@ -117,7 +134,7 @@ export function sceneLayoutDefines(): Record<string, number> {
 
 /** The generated GLSL: a struct and a loader per record (see records.ts). */
 export function sceneLayoutGlsl(): string {
-  const tables: RecordLayout[] = [MATERIAL, SPHERE, EMITTER, EMITTER_CHOICE];
+  const tables: RecordLayout[] = [MATERIAL, SPHERE, EMITTER, EMITTER_CHOICE, MESH];
   return [
     '// Generated from src/render/layout/scene.ts: do not edit.',
     ...tables.map((layout) => recordGlsl(layout, 'sceneData')),

@@ -65,8 +65,8 @@ export class TracePass {
     russianRoulette = false,
   ) {
     this.defines = sceneDefines(sampler, russianRoulette);
-    this.program = this.programFor({ guides: 0, dielectric: false, environmentMap: false, meshes: false });
-    this.programFor({ guides: 1, dielectric: false, environmentMap: false, meshes: false });
+    this.program = this.programFor({ guides: 0, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false });
+    this.programFor({ guides: 1, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false });
     this.assets = new AssetTextures(gl);
     this.sceneBuffer = gl.createBuffer()!;
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
@@ -102,8 +102,10 @@ export class TracePass {
     if (missing.length > 0) throw new SceneError(missing);
     const map = scene.environment && 'map' in scene.environment ? assets.maps.get(scene.environment.map)! : null;
     this.assets.setEnvironmentMap(map);
-    const packed = packScene(scene, { environmentIntegral: map ? environmentDistribution(map).integral : undefined });
-    this.assets.setMeshes(scene, assets, packed.meshMaterials);
+    const world = this.assets.worldMeshes(scene, assets);
+    const environmentIntegral = map ? environmentDistribution(map).integral : undefined;
+    const packed = packScene(scene, { environmentIntegral, meshes: world.sizes });
+    this.assets.setMeshes(world, packed.meshMaterials, packed.meshEmitters);
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
     gl.bufferSubData(gl.UNIFORM_BUFFER, 0, packed.block);
     gl.bindBuffer(gl.UNIFORM_BUFFER, null);

@@ -1,14 +1,16 @@
 /**
  * OpenEXR (`.exr`) decoder: three.js's EXRLoader (maintained, used by every
  * three.js app that loads an environment; half and float channels,
- * uncompressed, RLE, ZIPS, ZIP, PIZ, PXR24, B44/B44A, DWAA and DWAB).
+ * uncompressed, RLE, ZIPS, ZIP, PIZ, PXR24, B44/B44A, DWAA and DWAB), in a
+ * vendored copy with one fix (./vendor/EXRLoader.js: a corrupt Huffman
+ * stream made it loop forever).
  *
  * Before handing the file over we read its header ourselves: the size limit
  * must hold before any pixel is decoded, and the scanline offset table must
  * point inside the file (EXRLoader reads past the end of a truncated PIZ or
  * DWA file as zeros instead of failing).
  */
-import { EXRLoader } from 'three/examples/jsm/loaders/EXRLoader.js';
+import { EXRLoader } from './vendor/EXRLoader.js';
 import { FloatType } from 'three';
 import { AssetError } from '../assetError';
 import type { EnvironmentImage } from '../types';

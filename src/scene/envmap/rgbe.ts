@@ -89,9 +89,12 @@ function isRleScanline(bytes: Uint8Array, pos: number, width: number): boolean {
   return bytes[pos] === 2 && bytes[pos + 1] === 2 && (bytes[pos + 2] & 0x80) === 0;
 }
 
+/** 2^(e - 136) for each exponent byte e; 0 for e = 0 (black). */
+const SCALES = Float64Array.from({ length: 256 }, (_, e) => (e === 0 ? 0 : 2 ** (e - 136)));
+
 /** rgbe.c's conversion: each channel m * 2^(e - 136); e = 0 is black. */
 function writePixel(out: Float32Array, index: number, r: number, g: number, b: number, e: number): void {
-  const scale = e === 0 ? 0 : 2 ** (e - 136);
+  const scale = SCALES[e];
   out[index] = r * scale;
   out[index + 1] = g * scale;
   out[index + 2] = b * scale;

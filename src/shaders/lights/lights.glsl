@@ -18,7 +18,9 @@ LightSample sampleLight(vec3 x, vec3 u) {
   float scaled = u.z * float(count);
   int slot = clamp(int(scaled), 0, max(count - 1, 0));
   EmitterChoice choice = loadEmitterChoice(slot);
-  Emitter e = loadEmitter(scaled - float(slot) < choice.aliasThreshold ? slot : choice.alias);
+  float f = scaled - float(slot);
+  bool keep = f < choice.aliasThreshold;
+  Emitter e = loadEmitter(keep ? slot : choice.alias);
   float pdf;
   s.direction = sampleSphereEmitter(x, vec4(e.center, e.radius), u.xy, pdf, s.distance);
   s.radiance = e.radiance;
@@ -28,6 +30,16 @@ LightSample sampleLight(vec3 x, vec3 u) {
     s.direction = sampleEnvironment(u.xy, pdf);
     s.distance = INFINITY;
     s.radiance = environmentRadiance(s.direction);
+    s.skipSphere = -1;
+  }
+#endif
+#if HAS_EMISSIVE_MESHES
+  if (e.kind == EMITTER_MESH) {
+    // What is left of u.z after the alias draw, uniform again, picks the triangle.
+    float rest = keep ? f / choice.aliasThreshold : (f - choice.aliasThreshold) / max(1.0 - choice.aliasThreshold, 1e-30);
+    s.direction = sampleMeshEmitter(x, e, vec3(u.xy, min(rest, 0.99999994)), pdf, s.distance, s.radiance);
+    // The shadow ray stops short of the triangle it aims at.
+    s.distance *= 0.9999;
     s.skipSphere = -1;
   }
 #endif
@@ -41,6 +53,9 @@ float lightPdf(vec3 x, vec3 direction, Hit hit) {
   float pdf = hit.kind == HIT_SPHERE ? hit.emitterPdf * sphereEmitterPdf(x, hit.geometry) : 0.0;
 #if HAS_ENV_MAP
   pdf = hit.kind == HIT_NONE ? environmentEmitterPdf() * environmentPdf(direction) : pdf;
+#endif
+#if HAS_EMISSIVE_MESHES
+  pdf = hit.kind == HIT_TRIANGLE ? meshEmitterPdf(direction, hit) : pdf;
 #endif
   return pdf;
 }

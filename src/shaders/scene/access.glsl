@@ -14,3 +14,4 @@ SphereRecord loadSphere(int i) { return readSphereRecord(sphereTexel(i, 0)); }
 Material loadMaterial(int i) { return readMaterial(MATERIALS_FIRST + i * MATERIAL_TEXELS); }
 Emitter loadEmitter(int i) { return readEmitter(EMITTERS_FIRST + i * EMITTER_TEXELS); }
 EmitterChoice loadEmitterChoice(int i) { return readEmitterChoice(EMITTER_CHOICES_FIRST + i * EMITTER_CHOICE_TEXELS); }
+MeshRecord loadMesh(int i) { return readMeshRecord(MESHES_FIRST + i * MESH_RECORD_TEXELS); }

@@ -1,10 +1,11 @@
 // Triangle BVH traversal (closest hit and any hit) and the surface at a hit.
 // Packed by src/render/bvh/pack.ts, uploaded by src/render/bvhTextures.ts.
 //
-// uniform sampler2D uBvhNodes      RGBA32F, BVH_TEXTURE_WIDTH wide, texel i at (i % W, i / W).
+// uniform sampler2DArray uBvhNodes      RGBA32F, 2048 x 512 (one layer: fewer rows) x layers;
+//   texel i at (i % 2048, (i / 2048) % 512, layer i / 2^20).
 //   Node i = texels 2i, 2i+1: (min.xyz, a), (max.xyz, b).
 //   Interior: b = 0, first child i + 1, second child a. Leaf: b = triangle count, a = first triangle.
-// uniform sampler2D uBvhTriangles  RGBA32F, same width. Triangle j = texels 3j .. 3j+2:
+// uniform sampler2DArray uBvhTriangles  the same layout. Triangle j = texels 3j .. 3j+2:
 //   (v0.xyz, material), (v1.xyz, normals texel or -1 if flat), (v2.xyz, mesh index);
 //   a smooth triangle's vertex normals n0 n1 n2 at its normals texel .. +2.
 // Integers are stored as exact float values.
@@ -19,14 +20,17 @@
 #if HAS_MESHES
 
 #ifndef BVH_TEXTURE_WIDTH_LOG2
-#define BVH_TEXTURE_WIDTH_LOG2 12
+#define BVH_TEXTURE_WIDTH_LOG2 11
+#endif
+#ifndef BVH_LAYER_ROWS_LOG2
+#define BVH_LAYER_ROWS_LOG2 9
 #endif
 #ifndef BVH_STACK_SIZE
 #define BVH_STACK_SIZE 32
 #endif
 
-uniform highp sampler2D uBvhNodes;
-uniform highp sampler2D uBvhTriangles;
+uniform highp sampler2DArray uBvhNodes;
+uniform highp sampler2DArray uBvhTriangles;
 
 struct BvhHit {
   int triangle;     // BVH order; -1 when nothing was hit
@@ -47,8 +51,15 @@ const float BVH_NO_HIT = 3.0e38;
 // a few ulps more cover GPUs whose division is approximate.
 const float BVH_BOX_EXIT_SCALE = 1.000001;
 
+// A plain 2D texture BVH_TEXTURE_WIDTH wide (other per-triangle tables): texel i at (i % W, i / W).
 vec4 bvhTexel(highp sampler2D map, int i) {
   return texelFetch(map, ivec2(i & ((1 << BVH_TEXTURE_WIDTH_LOG2) - 1), i >> BVH_TEXTURE_WIDTH_LOG2), 0);
+}
+
+vec4 bvhTexel(highp sampler2DArray map, int i) {
+  const int columns = (1 << BVH_TEXTURE_WIDTH_LOG2) - 1;
+  const int rows = (1 << BVH_LAYER_ROWS_LOG2) - 1;
+  return texelFetch(map, ivec3(i & columns, (i >> BVH_TEXTURE_WIDTH_LOG2) & rows, i >> (BVH_TEXTURE_WIDTH_LOG2 + BVH_LAYER_ROWS_LOG2)), 0);
 }
 
 // Entry distance into node's box, or BVH_NO_HIT when the ray misses it before tMax.

@@ -21,7 +21,8 @@ struct Hit {
   float scale;      // size of the hit object, for the self-intersection offset
   vec4 geometry;    // the sphere hit: [center, radius]
   int material;     // index into the material table
-  float emitterPdf; // probability that light sampling picks the hit surface (0: not an emitter)
+  float emitterPdf; // sphere: probability that light sampling picks it; triangle: the mesh's
+                    // density per unit area (lights/mesh_emitter.glsl); 0: not an emitter
 };
 
 // Nearest t > 0 where the ray (unit direction) meets the sphere, or
@@ -104,7 +105,11 @@ Hit intersectScene(vec3 origin, vec3 direction) {
     hit.geometricNormal = s.geometricNormal;
     hit.scale = 0.0;
     hit.material = s.material;
+#if HAS_EMISSIVE_MESHES
+    hit.emitterPdf = loadMesh(s.mesh).areaPdf;
+#else
     hit.emitterPdf = 0.0;
+#endif
     hit.twoSided = true;  // for standard materials: see traceRadiance
   }
 #endif

@@ -1,6 +1,6 @@
 // One ray per pixel through bvh.glsl, for test/browser/bvh-traversal.test.ts.
-// uRays: RGBA32F, ray i at texels 2i (origin, tMax), 2i+1 (direction, unused).
-uniform highp sampler2D uRays;
+// uRays: RGBA32F in the BVH textures' layout, ray i at texels 2i (origin, tMax), 2i+1 (direction, unused).
+uniform highp sampler2DArray uRays;
 uniform int uMode; // 0 closest hit, 1 any hit, 2 surface at the closest hit
 uniform int uGridWidth;
 

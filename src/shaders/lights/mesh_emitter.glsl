@@ -1,0 +1,45 @@
+// Emissive meshes as emitters: light sampling picks a mesh by power (the
+// emitter table), then one of its triangles in proportion to its area (an
+// alias table per mesh in uEmissiveTriangles, src/render/passes/assetTextures.ts),
+// then a uniform point on the triangle. So a point has the density, per unit
+// area, of the mesh's MeshRecord.areaPdf = pdf(mesh) / area(mesh), turned
+// into solid angle at x by distance^2 / |cos| at the light (the geometric
+// normal: the area measure). The triangle emits towards the side its
+// shading normal faces (the format's one-sided emission).
+//
+// uEmissiveTriangles: RGBA32F, BVH_TEXTURE_WIDTH wide; slot s at
+// (s % W, s / W) = (BVH triangle, alias threshold, alias's BVH triangle, 0).
+//
+// Compiled in only for scenes with emissive meshes (HAS_EMISSIVE_MESHES).
+
+#if HAS_EMISSIVE_MESHES
+
+uniform highp sampler2D uEmissiveTriangles;
+
+// A point on mesh emitter e seen from x: its direction, distance, emitted
+// radiance towards x and solid-angle density (emitter choice excluded).
+// u: .xy the point on the triangle, .z the choice of triangle.
+vec3 sampleMeshEmitter(vec3 x, Emitter e, vec3 u, out float pdf, out float distance, out vec3 radiance) {
+  float scaled = u.z * float(e.count);
+  int k = min(int(scaled), e.count - 1);
+  vec4 slot = bvhTexel(uEmissiveTriangles, e.first + k);
+  int triangle = int(scaled - float(k) < slot.y ? slot.x : slot.z);
+  float s = sqrt(u.x);
+  BvhSurface surface = bvhSurface(BvhHit(triangle, 0.0, vec2(s * (1.0 - u.y), s * u.y)));
+  vec3 toLight = surface.position - x;
+  distance = length(toLight);
+  vec3 direction = toLight / distance;
+  float cosLight = abs(dot(direction, surface.geometricNormal));
+  pdf = cosLight > 0.0 ? loadMesh(e.primitive).areaPdf / e.pdf * distance * distance / cosLight : 0.0;
+  radiance = dot(direction, surface.shadingNormal) < 0.0 ? e.radiance : vec3(0.0);
+  return direction;
+}
+
+// Density of light sampling drawing `direction` from x towards the
+// triangle `hit` (its emitterPdf is the mesh's areaPdf), emitter choice included.
+float meshEmitterPdf(vec3 direction, Hit hit) {
+  float cosLight = abs(dot(direction, hit.geometricNormal));
+  return cosLight > 0.0 ? hit.emitterPdf * hit.t * hit.t / cosLight : 0.0;
+}
+
+#endif
