@@ -10,7 +10,8 @@ import { MAX_TRIANGLES } from '../render/bvh/pack';
 import { AssetError } from '../scene/assetError';
 import { MAX_MESHES } from '../scene/limits';
 import { formatIssue } from '../scene/schema';
-import { decodeMesh, encodePly, MESH_EXTENSIONS } from '../scene/mesh';
+import { encodePly, MESH_EXTENSIONS } from '../scene/mesh';
+import { decodeMeshOffThread } from './meshDecode';
 import type { Mesh, TriangleMesh, Vec3 } from '../scene/types';
 import type { App } from './App';
 import { addSphereMaterialControls } from './materialControls';
@@ -37,7 +38,7 @@ export async function addModelFile(app: App, file: File, keep: KeepFiles): Promi
   if (app.scene.meshes.length >= MAX_MESHES) return fail(`the scene already has ${MAX_MESHES} meshes, the most it can hold`);
   let data: TriangleMesh;
   try {
-    data = await decodeMesh(new Uint8Array(await file.arrayBuffer()), file.name);
+    data = await decodeMeshOffThread(new Uint8Array(await file.arrayBuffer()), file.name);
   } catch (error) {
     return fail(error instanceof AssetError ? error.message : `cannot be read (${(error as Error)?.message ?? String(error)})`);
   }

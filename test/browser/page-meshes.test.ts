@@ -89,14 +89,23 @@ describe('meshes on the page', () => {
     await page.close();
   }, 180_000);
 
-  it('opens the bundled bunny example and renders it', async () => {
+  it('opens the bundled bunny example, adds a model to it, and both come back after a reload', async () => {
     const { page, errors } = await openPage(harness, { minSpp: 1 });
     const pixelsBefore = await canvasPixels(page);
     await page.selectOption('#examples', 'bunny (model)');
-    await page.waitForFunction(() => document.body.dataset.saved !== undefined);
     await expect.poll(async () => (await meshesOf(page)).map((m) => m.file), { timeout: 30_000 }).toEqual(['bunny.ply']);
+    await page.waitForFunction(() => document.body.dataset.meshes === 'ready');
     await waitForSpp(page, 2);
     expect(meanAbsDifference((await canvasPixels(page)).rgba, pixelsBefore.rgba)).toBeGreaterThan(2);
+    await page.setInputFiles('#file', ICO);
+    await expect.poll(async () => (await meshesOf(page)).map((m) => m.file), { timeout: 30_000 }).toEqual(['bunny.ply', 'ico-smooth.obj']);
+    const scene = await savedScene(page);
+    await page.waitForTimeout(1500); // the model file is kept first (IndexedDB), then the scene saved
+    await page.waitForFunction(() => document.body.dataset.saved === 'saved');
+    await page.reload();
+    await waitForSpp(page, 1);
+    expect(await savedScene(page)).toEqual(scene);
+    await page.waitForFunction(() => document.body.dataset.meshes === 'ready');
     expect(await page.getByTestId('error').isHidden()).toBe(true);
     expect(errors).toEqual([]);
     await page.close();
