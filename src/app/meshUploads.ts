@@ -51,6 +51,8 @@ function meshState(scene: Scene, assets: SceneAssets): MeshState {
 export class MeshUploads {
   private uploadedKey: string;
   private building: string | null = null;
+  /** The meshes whose BVH was built and offered to the renderer (offerBvh), not yet uploaded. */
+  private builtKey: string | null = null;
   /** Milliseconds of the last worker build, for the page's statistics and tests. */
   lastBuildMs = 0;
 
@@ -72,8 +74,9 @@ export class MeshUploads {
   upload(): void {
     const { scene, assets } = this.current();
     const state = meshState(scene, assets);
-    if (state.key === this.uploadedKey || state.triangles <= ASYNC_BUILD_TRIANGLES) {
+    if (state.key === this.uploadedKey || state.key === this.builtKey || state.triangles <= ASYNC_BUILD_TRIANGLES) {
       this.uploadedKey = state.key;
+      this.builtKey = null;
       // A copy: the tracer re-uploads its scene on a resize, and the page's
       // scene may by then hold edits whose BVH is still being built.
       this.tracer.setScene(structuredClone(scene), assets);
@@ -96,6 +99,7 @@ export class MeshUploads {
     if (meshState(scene, assets).key === key) return; // upload() takes it
     const mixed = { ...structuredClone(scene), meshes: snapshot.meshes };
     this.uploadedKey = key;
+    this.builtKey = null;
     this.tracer.setScene(meshState(mixed, assets).key === key ? mixed : snapshot, assets);
   }
 
@@ -109,6 +113,7 @@ export class MeshUploads {
         if (typeof document !== 'undefined') document.body.dataset.meshBuildMs = this.lastBuildMs.toFixed(0);
         offerBvh(snapshot, assets, state.materials, packed);
         this.building = null;
+        this.builtKey = state.key;
         this.showBuilt(snapshot, state.key);
         this.upload();
       },

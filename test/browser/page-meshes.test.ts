@@ -47,6 +47,8 @@ describe('meshes on the page', () => {
     expect(meshes[0].rotation).toEqual([0, 0, 0]);
     expect(meshes[0].position[1]).toBeCloseTo(-scale * min[1], 4);
     expect(saved.camera).not.toEqual(before.camera);
+    // The BVH is built in the worker, then the scene with the mesh is uploaded.
+    await page.waitForFunction(() => document.body.dataset.meshes === 'ready');
     await waitForSpp(page, 2);
     expect(meanAbsDifference((await canvasPixels(page)).rgba, pixelsBefore.rgba)).toBeGreaterThan(2);
 
@@ -61,6 +63,7 @@ describe('meshes on the page', () => {
     await drag(page, centre, 40, 0);
     meshes = await meshesOf(page);
     expect(Math.abs(meshes[0].position[0])).toBeGreaterThan(0.05);
+    await page.waitForFunction(() => document.body.dataset.meshes === 'ready');
     expect(meshes[0].position[1]).toBeCloseTo(-scale * min[1], 4);
 
     // The material through the panel.
@@ -70,9 +73,18 @@ describe('meshes on the page', () => {
     await roughness.blur();
     expect((await meshesOf(page))[0].material.roughness).toBeCloseTo(0.2, 5);
 
-    // Delete, then undo.
+    // Delete, then undo. The mesh is really drawn: the image without it differs.
+    await page.waitForFunction(() => document.body.dataset.meshes === 'ready');
+    await waitForSpp(page, 2);
+    await page.keyboard.press('Escape'); // no selection outline in the screenshots
+    const withMesh = await canvasPixels(page);
+    await page.mouse.click(centre.x + 40, centre.y);
+    const counted = await spp(page);
     await page.keyboard.press('Delete');
     expect(await meshesOf(page)).toHaveLength(0);
+    await page.waitForFunction((n) => Number(document.querySelector('[data-testid="spp"]')?.textContent) < n, counted); // restarted
+    await waitForSpp(page, 2);
+    expect(meanAbsDifference((await canvasPixels(page)).rgba, withMesh.rgba)).toBeGreaterThan(2);
     await page.keyboard.press('Control+z');
     expect(await meshesOf(page)).toHaveLength(1);
 
