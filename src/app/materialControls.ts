@@ -12,10 +12,10 @@ import type { Controller } from 'lil-gui';
 import { hexToLinear, linearToHex } from '../scene/color';
 import { MAX_IOR, MIN_IOR } from '../scene/limits';
 import type { Emission, Material, MaterialType, Vec3 } from '../scene/types';
+import type { App } from './App';
 
 /** A sphere or a mesh: anything with a material. */
 type Sphere = { material: Material };
-import type { App } from './App';
 
 export const MATERIAL_TYPES: readonly MaterialType[] = ['standard', 'dielectric'];
 
