@@ -5,8 +5,12 @@
  * recorded while it decodes, while its BVH is built in the worker, and for
  * `--seconds` of rendering afterwards; the seed scene without the mesh is
  * measured first for comparison. Run after `npm run build:web`:
- *   npx tsx bench/mesh-page-frames.ts [--triangles 1000000] [--seconds 15]
+ *   npx tsx bench/mesh-page-frames.ts [--triangles 1000000] [--seconds 15] [--paused]
+ * (--paused: the render is paused while the model loads, to see the page's own work.)
  */
+import { mkdtempSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
 import type { Page } from 'playwright-core';
 import { launchChromium, webRoot } from '../src/node/session';
 import { serveDirectory } from '../src/node/server';
@@ -43,6 +47,8 @@ async function main(argv: string[]): Promise<void> {
   const triangles = Number(option(argv, 'triangles', '1000000'));
   const seconds = Number(option(argv, 'seconds', '15'));
   const ply = Buffer.from(bumpySpherePly(triangles));
+  const file = join(mkdtempSync(join(tmpdir(), 'mesh-frames-')), `sphere-${triangles}.ply`);
+  writeFileSync(file, ply);
   const server = await serveDirectory(webRoot());
   const browser = await launchChromium();
   try {
@@ -56,8 +62,13 @@ async function main(argv: string[]): Promise<void> {
     await page.waitForTimeout(seconds * 1000);
     console.log(`seed scene at ${res}: ${await gaps(page, t0, await now(page))}`);
 
+    // Paused while the model loads: the frame gaps are then the page's own
+    // work for the model (decode, fit, upload), not path tracing.
+    const paused = argv.includes('--paused');
+    if (paused) await page.click('#pause');
     t0 = await now(page);
-    await page.setInputFiles('#file', { name: `sphere-${triangles}.ply`, mimeType: 'application/octet-stream', buffer: ply });
+    // From a file on disk: a buffer would be built into a File by script in the page, blocking it.
+    await page.setInputFiles('#file', file);
     await page.waitForFunction(() => document.body.dataset.meshes === 'building', undefined, { timeout: 300_000 });
     const t1 = await now(page);
     console.log(`opening the ${(ply.length / 2 ** 20).toFixed(1)} MB PLY until its BVH build starts: ${((t1 - t0) / 1000).toFixed(1)} s; ${await gaps(page, t0, t1)}`);
@@ -66,6 +77,11 @@ async function main(argv: string[]): Promise<void> {
     const t2 = await now(page);
     const buildMs = await page.evaluate(() => document.body.dataset.meshBuildMs);
     console.log(`BVH build in the worker: ${((t2 - t1) / 1000).toFixed(1)} s (worker ${buildMs} ms); frames meanwhile: ${await gaps(page, t1, t2)}`);
+    if (paused) {
+      await page.waitForTimeout(2000); // the upload itself happens on the next frame
+      console.log(`(paused) frames from the upload on: ${await gaps(page, t2, await now(page))}`);
+      await page.click('#pause');
+    }
     await page.waitForFunction(() => Number(document.querySelector('[data-testid="spp"]')?.textContent) >= 1, undefined, { timeout: 120_000 });
     const t3 = await now(page);
     console.log(`first sample of the mesh after upload: ${((t3 - t2) / 1000).toFixed(1)} s; ${await gaps(page, t2, t3)}`);
