@@ -8,6 +8,7 @@
 import { formatTable, runBench, type BenchOptions } from './run';
 import { writeResult } from './common';
 import { formatFirstPixel, runFirstPixel } from './first-pixel';
+import { formatEnvmapLoad, measureEnvmapLoad } from './envmap-load';
 
 function parse(argv: string[]): { options: BenchOptions; save: boolean; json: boolean } {
   const options: BenchOptions = { log: (line) => console.error(line) };
@@ -50,10 +51,14 @@ async function main(): Promise<void> {
   const bench = await runBench(options);
   // The page's time to first pixel (load -> first rendered frame), a fresh browser per run.
   const firstPixel = await runFirstPixel(times(options) <= 0.5 ? 1 : 3, options.log);
-  const result = { ...bench, firstPixel };
+  // Loading a 2k environment map: decode and sampling distribution (Node; the page runs the same code in a Worker).
+  const loadRuns = times(options) <= 0.5 ? 1 : 5;
+  const envmapLoad = measureEnvmapLoad(loadRuns);
+  const result = { ...bench, firstPixel, envmapLoad };
   console.log(`${result.renderer} | ${result.machine.browser} | ${result.machine.cpu} x${result.machine.cores} | rev ${result.revision}${result.mitsubaVersion ? ` | Mitsuba ${result.mitsubaVersion} scalar_rgb` : ''}`);
   console.log(formatTable(result));
   console.log(formatFirstPixel(firstPixel));
+  console.log(formatEnvmapLoad(envmapLoad, loadRuns));
   if (json) console.log(JSON.stringify(result));
   if (save) console.log(`saved ${writeResult('bench', result)}`);
 }

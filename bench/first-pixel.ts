@@ -71,7 +71,8 @@ export function formatFirstPixel(r: FirstPixelResult): string {
   return `time to first pixel (page, ${r.viewport.width}x${r.viewport.height}, median of ${r.runs}): cold ${r.medianColdMs.toFixed(0)} ms, warm ${r.medianWarmMs.toFixed(0)} ms (renderer ready ${median(r.rendererReadyMs).toFixed(0)} ms)`;
 }
 
-if (process.argv[1] && import.meta.url.endsWith(process.argv[1].replace(/^.*\//, '/'))) {
+// Run directly (not when bundled into dist/cli/bench.js, whose import.meta.url is the bundle's).
+if (/first-pixel\.[cm]?[jt]s$/.test(process.argv[1] ?? '')) {
   const at = process.argv.indexOf('--runs');
   const runs = at > 0 ? Number(process.argv[at + 1]) : 3;
   runFirstPixel(runs, (line) => console.error(line))

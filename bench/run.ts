@@ -131,7 +131,7 @@ function finishRun(checkpoints: Checkpoint[], pixels: number, target: number, re
   };
 }
 
-async function benchOurs(
+export async function benchOurs(
   session: RenderSession,
   scene: Scene,
   size: { width: number; height: number },

@@ -17,6 +17,9 @@ import { Autosave, readStartState, type SaveStatus, type StartState } from './pe
 import { linkDigest } from './savedState';
 import { SceneLoader } from './sceneLoader';
 import { addModelFile, isModelFile, MESH_EXAMPLES, meshExampleFiles } from './meshControls';
+import { EnvironmentMaps, MAP_FILE_PATTERN } from './environmentMaps';
+import { bundledMapName } from './bundledMaps';
+import { MAP_EXAMPLES } from './mapExamples';
 import { Panel } from './panel';
 import { encodePfm } from '../image/pfm';
 import type { RenderStats } from './renderLoop';
@@ -52,14 +55,15 @@ async function start(): Promise<void> {
     return;
   }
   performance.mark('renderer-ready');
-  const panel = new Panel(app, $('panel'));
   const autosave = new Autosave(app, showSaveStatus);
+  const maps = new EnvironmentMaps(app, autosave, showIssues, clearError);
+  const panel = new Panel(app, $('panel'), maps);
   app.onUploadError = (message) => showError(message);
   const loader = openStartState(app, autosave, startState);
   attachInput(app, canvas);
   attachKeys(app);
   wireToolbar(app, loader);
-  wireFiles(app, autosave, loader);
+  wireFiles(app, autosave, loader, maps);
   wireContextLoss(app);
   wireOverlay(app);
   if (window.matchMedia('(max-width: 760px)').matches) panel.gui.close();
@@ -155,11 +159,16 @@ function wireToolbar(app: App, loader: SceneLoader): void {
 
 // ---------------------------------------------------------------- files
 
-function wireFiles(app: App, autosave: Autosave, loader: SceneLoader): void {
-  // A scene file with the maps and models it names, opened or dropped together.
+function wireFiles(app: App, autosave: Autosave, loader: SceneLoader, maps: EnvironmentMaps): void {
+  // A scene file with the maps and models it names, opened or dropped together;
+  // a map file alone becomes the environment of the current scene.
   const openFiles = (list: Iterable<File> | undefined | null) => {
     const files = [...(list ?? [])];
     if (!files.length) return;
+    if (files.length === 1 && MAP_FILE_PATTERN.test(files[0].name)) {
+      void maps.useFile(files[0]);
+      return;
+    }
     if (files.every((f) => isModelFile(f.name))) {
       // Models alone are added to the open scene, one after another.
       void files.reduce<Promise<unknown>>((done, f) => done.then(() => addModelFile(app, f, (kept) => void autosave.keepFiles(app.scene, kept))), Promise.resolve());
@@ -198,7 +207,8 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader): void {
   });
 
   const examples = $<HTMLSelectElement>('examples');
-  for (const name of PRESET_NAMES) {
+  const exampleScenes: Record<string, unknown> = Object.fromEntries([...PRESET_NAMES.map((n) => [n, PRESETS[n]] as const), ...Object.entries(MAP_EXAMPLES)]);
+  for (const name of Object.keys(exampleScenes)) {
     const option = document.createElement('option');
     option.value = name;
     option.textContent = name;
@@ -208,8 +218,8 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader): void {
   examples.addEventListener('change', () => {
     const name = examples.value;
     examples.value = '';
-    if (name in PRESETS) void loader.open(`The example "${name}"`, () => safeParseScene(PRESETS[name]));
-    if (name in MESH_EXAMPLES) void meshExampleFiles().then((files) => loader.open(`The example "${name}"`, () => safeParseScene(MESH_EXAMPLES[name]), files));
+    if (Object.hasOwn(exampleScenes, name)) void loader.open(`The example "${name}"`, () => safeParseScene(exampleScenes[name]));
+    if (Object.hasOwn(MESH_EXAMPLES, name)) void meshExampleFiles().then((files) => loader.open(`The example "${name}"`, () => safeParseScene(MESH_EXAMPLES[name]), files));
   });
 
   $('save-json').addEventListener('click', () => {
@@ -222,9 +232,12 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader): void {
     autosave.linkDigest = linkDigest(hash); // reloading this address keeps later edits
     autosave.schedule();
     const url = location.href;
+    const env = app.scene.environment;
+    // A user's map file cannot travel in a link: say so where the link is made.
+    const ownMap = env && 'map' in env && !bundledMapName(env.map) ? ` It names your map "${env.map}", which a link cannot carry: whoever opens it must open that file too.` : '';
     navigator.clipboard?.writeText(url).then(
-      () => notify('Link copied: it carries the whole scene.'),
-      () => notify('The page address now carries the scene: copy it from the address bar.'),
+      () => notify(`Link copied: it carries the whole scene.${ownMap}`, ownMap ? 8000 : undefined),
+      () => notify(`The page address now carries the scene: copy it from the address bar.${ownMap}`, ownMap ? 8000 : undefined),
     );
   });
 

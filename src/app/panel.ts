@@ -11,6 +11,8 @@ import type { Ground, Material } from '../scene/types';
 import type { App } from './App';
 import { addSphereMaterialControls } from './materialControls';
 import { addMeshControls } from './meshControls';
+import { addEnvironmentControls } from './environmentControls';
+import type { EnvironmentMaps } from './environmentMaps';
 
 const DEFAULT_GROUND: Ground = { height: 0, material: { type: 'standard', color: [0.8, 0.8, 0.8], roughness: 1 } };
 
@@ -23,11 +25,12 @@ export class Panel {
   constructor(
     private readonly app: App,
     container: HTMLElement,
+    maps: EnvironmentMaps | null = null,
   ) {
     this.gui = new GUI({ container, title: 'Controls' });
     this.selectionFolder = this.gui.addFolder('Selection');
     this.buildSelection();
-    this.buildSky();
+    addEnvironmentControls(this.gui, app, maps, (c) => this.tracked(c)).close();
     this.buildGround();
     this.buildCamera();
     this.buildRender();
@@ -103,26 +106,6 @@ export class Panel {
       get roughness() { return material().roughness; },
       set roughness(v: number) { app.live(() => (material().roughness = v)); },
     }, 'roughness', 0, 1, 0.01));
-  }
-
-  private buildSky(): void {
-    const app = this.app;
-    const folder = this.gui.addFolder('Sky');
-    // The constant sky; a map environment is replaced by a constant one when its color is set.
-    const env = () => {
-      const current = app.scene.environment;
-      if (current && 'color' in current) return current;
-      return (app.scene.environment = { color: [0, 0, 0], intensity: current?.intensity ?? 0 });
-    };
-    this.tracked(folder.addColor({
-      get color() { const e = app.scene.environment; return linearToHex(e && 'color' in e ? e.color : [0, 0, 0]); },
-      set color(v: string) { app.live(() => (env().color = hexToLinear(v))); },
-    }, 'color'));
-    this.tracked(folder.add({
-      get intensity() { return app.scene.environment?.intensity ?? 0; },
-      set intensity(v: number) { app.live((sc) => { if (sc.environment) sc.environment.intensity = v; else env().intensity = v; }); },
-    }, 'intensity', 0, 5, 0.01));
-    folder.close();
   }
 
   private buildGround(): void {

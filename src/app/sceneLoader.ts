@@ -6,9 +6,11 @@
  * history, and not the accumulated samples.
  */
 import { AssetError } from '../scene/assetError';
-import { loadSceneAssets, NO_ASSETS, type SceneAssets } from '../scene/assets';
+import { assetReferences, loadSceneAssets, NO_ASSETS, type AssetReader, type SceneAssets } from '../scene/assets';
+import { bundledMapBytes, bundledMapName } from './bundledMaps';
+import { decodeMap } from './mapDecoder';
 import { SceneError, type SafeParseResult, type SceneIssue } from '../scene/schema';
-import type { Scene } from '../scene/types';
+import type { EnvironmentImage, Scene } from '../scene/types';
 
 export type AssetResult = { ok: true; assets: SceneAssets } | { ok: false; issues: SceneIssue[] };
 
@@ -17,22 +19,47 @@ export type CompanionFiles = ReadonlyMap<string, Blob>;
 
 /**
  * Decodes the maps and models a scene names, from the files opened with it
- * (matched by file name, without folders) or those already loaded (`known`).
- * A file missing or failing to decode is an issue at the scene path that
- * names it (`environment.map: "sky.hdr": ...`), and the load is rejected.
+ * (matched by file name, without folders), the page's bundled maps
+ * (`bundled/NAME.exr`) or those already loaded (`known`). A file missing or
+ * failing to decode is an issue at the scene path that names it
+ * (`environment.map: "sky.hdr": ...`), and the load is rejected. Maps are
+ * decoded, and their distributions built, in a Worker: the page stays
+ * interactive while a large map loads.
  */
 export async function resolveAssets(scene: Scene, files: CompanionFiles, known: SceneAssets = NO_ASSETS): Promise<AssetResult> {
   const read = async (name: string) => {
     const file = files.get(name) ?? files.get(baseName(name));
-    if (!file) throw new AssetError(`not opened: open or drop it together with the scene file`);
-    return new Uint8Array(await file.arrayBuffer());
+    if (file) return new Uint8Array(await file.arrayBuffer());
+    const bundled = bundledMapName(name);
+    if (bundled) return bundledMapBytes(bundled);
+    throw new AssetError(`not opened: open or drop it together with the scene file`);
   };
+  const maps = await decodeMaps(scene, read, known);
+  // The models are decoded (and checked) even when the map failed: every unusable file is reported at once.
+  const rest = maps.issues.length ? { ...scene, environment: null } : scene;
   try {
-    return { ok: true, assets: await loadSceneAssets(scene, read, known) };
+    const assets = await loadSceneAssets(rest, read, { maps: maps.maps, meshes: known.meshes });
+    return maps.issues.length ? { ok: false, issues: maps.issues } : { ok: true, assets };
   } catch (error) {
-    if (error instanceof SceneError) return { ok: false, issues: error.issues };
+    if (error instanceof SceneError) return { ok: false, issues: [...maps.issues, ...error.issues] };
     throw error;
   }
+}
+
+/** The scene's map (if any) decoded off the main thread, with the known ones; loadSceneAssets then finds it decoded. */
+async function decodeMaps(scene: Scene, read: AssetReader, known: SceneAssets): Promise<{ maps: Map<string, EnvironmentImage>; issues: SceneIssue[] }> {
+  const maps = new Map(known.maps);
+  const issues: SceneIssue[] = [];
+  for (const ref of assetReferences(scene)) {
+    if (ref.kind !== 'map' || maps.has(ref.file)) continue;
+    try {
+      maps.set(ref.file, await decodeMap(await read(ref.file), ref.file));
+    } catch (error) {
+      const message = error instanceof AssetError ? error.message : `cannot be read (${(error as Error)?.message ?? String(error)})`;
+      issues.push({ path: ref.path, message: `${JSON.stringify(ref.file)}: ${message}` });
+    }
+  }
+  return { maps, issues };
 }
 
 export const baseName = (name: string) => name.slice(name.replace(/\\/g, '/').lastIndexOf('/') + 1);

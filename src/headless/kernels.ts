@@ -11,9 +11,10 @@ import { BLOCK_VEC4S } from '../render/layout/scene';
 import { featureDefines, sceneDefines } from '../render/shaderChunks';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/shaderSources';
 import { createContext } from '../render/gl/context';
+import { GUIDE_KERNELS, isGuideKernel, runGuideKernel } from './guideKernels';
 
 export const KERNELS = ['sampleCone', 'sampleMaterial', 'pdfMaterial'] as const;
-export type KernelName = (typeof KERNELS)[number];
+export type KernelName = (typeof KERNELS)[number] | (typeof GUIDE_KERNELS)[number];
 
 export interface KernelRequest {
   kernel: KernelName;
@@ -24,6 +25,12 @@ export interface KernelRequest {
   /** Outgoing direction (local frame) for the material kernels. */
   wo?: [number, number, number];
   seed?: number;
+  /** Guide kernels (./guideKernels.ts): the vertex, its normal, and the guide's mirror and light (centre, radius each). */
+  point?: [number, number, number];
+  normal?: [number, number, number];
+  guide?: number[];
+  /** pdfCap: the cap's axis (local frame) and half angle in radians. */
+  cap?: [number, number, number, number];
 }
 
 let context: { gl: WebGL2RenderingContext; program: Program } | null = null;
@@ -49,6 +56,7 @@ function kernelContext() {
 
 /** Runs a kernel; returns RGBA float32, rows bottom to top (pixel index = y * width + x). */
 export function runKernel(request: KernelRequest): Float32Array {
+  if (isGuideKernel(request.kernel)) return runGuideKernel({ ...request, kernel: request.kernel });
   const { gl, program } = kernelContext();
   const target = new FloatTarget(gl, request.width, request.height);
   const params = [0, 0, 0, 0].map((v, i) => request.params[i] ?? v);

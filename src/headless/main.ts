@@ -25,6 +25,8 @@ export interface LoadOptions {
   seed: number;
   sampler?: SamplerKind;
   russianRoulette?: boolean;
+  /** Accumulate the denoiser's guides while rendering (PathTracerOptions.aovs). */
+  aovs?: boolean;
 }
 
 export interface HeadlessApi {
@@ -37,6 +39,8 @@ export interface HeadlessApi {
   /** Discards the accumulated samples (keeps the compiled shaders: for timing). */
   reset(): void;
   readLinear(): string;
+  /** PathTracer.readAovs: each guide as base64 float32, and the samples behind them. */
+  readAovs(): { albedo: string; normal: string; samples: number };
   readDisplayed(options: DisplayOptions): string;
   loseContext(): void;
   restoreContext(): void;
@@ -46,15 +50,8 @@ export interface HeadlessApi {
   compileLog(name: string, source: string): string | null;
   /** Denoises base64 float32 arrays handed in (src/headless/denoise.ts). */
   denoise(request: DenoiseRequest): Promise<DenoiseResult>;
-  /** The tracer's guides (albedo, normal: base64 float32 RGBA rows top to bottom); throws if this tracer has none. */
-  readAovs(): { albedo: string; normal: string };
   /** A linear RGBA image (base64 float32) through the display pass: base64 RGBA8 sRGB. */
   displayLinear(linear: string, width: number, height: number, options: DisplayOptions): string;
-}
-
-/** What the denoiser needs from the tracer (issue 12): guide buffers like readLinear(). */
-interface TracerWithAovs {
-  readAovs?(): { albedo: Float32Array; normal: Float32Array };
 }
 
 let tracer: PathTracer | null = null;
@@ -114,6 +111,11 @@ const api: HeadlessApi = {
     const data = requireTracer().readLinear();
     return toBase64(new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
   },
+  readAovs() {
+    const { albedo, normal, samples } = requireTracer().readAovs();
+    const encode = (data: Float32Array) => toBase64(new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
+    return { albedo: encode(albedo), normal: encode(normal), samples };
+  },
   readDisplayed(options) {
     return toBase64(requireTracer().readDisplayed(options));
   },
@@ -141,15 +143,6 @@ const api: HeadlessApi = {
     }
   },
   denoise: denoiseArrays,
-  readAovs() {
-    const t = requireTracer() as PathTracer & TracerWithAovs;
-    if (typeof t.readAovs !== 'function') {
-      throw new Error('readAovs: this PathTracer has no guide buffers (albedo/normal AOVs) yet, so it cannot denoise');
-    }
-    const { albedo, normal } = t.readAovs();
-    const encode = (f: Float32Array) => toBase64(new Uint8Array(f.buffer, f.byteOffset, f.byteLength));
-    return { albedo: encode(albedo), normal: encode(normal) };
-  },
   displayLinear(linear, width, height, options) {
     return toBase64(displayLinear(fromBase64(linear), width, height, options));
   },

@@ -76,6 +76,12 @@ export interface RenderSession {
   reset(): Promise<void>;
   /** Mean linear radiance, RGBA float32, rows top to bottom, width*height*4. */
   readLinear(): Promise<Float32Array>;
+  /**
+   * The denoiser's guides (PathTracer.readAovs): albedo and normal of the
+   * first non-specular hit, RGBA float32, rows top to bottom, width*height*4
+   * each; rendered now if the tracer did not keep them (LoadOptions.aovs).
+   */
+  readAovs(): Promise<{ albedo: Float32Array; normal: Float32Array; samples: number }>;
   /** The displayed image exactly as the page shows it: RGBA8 sRGB, rows top to bottom. */
   readDisplayed(options: { exposure: number; toneMap: string }): Promise<Uint8Array>;
   close(): Promise<void>;
@@ -87,8 +93,6 @@ export interface RenderSession {
   compileLog(name: string, source: string): Promise<string | null>;
   /** Denoises linear RGBA arrays (rows top to bottom) in the page with src/denoise. */
   denoise(input: DenoiseArrays, options?: DenoiseRequest['options']): Promise<DenoiseOutcome>;
-  /** The tracer's albedo and normal guides, RGBA float32 rows top to bottom (needs PathTracer.readAovs()). */
-  readAovs(): Promise<{ albedo: Float32Array; normal: Float32Array }>;
   /** A linear RGBA image through the page's display pass, as readDisplayed() shows the tracer's. */
   displayLinear(linear: Float32Array, width: number, height: number, options: { exposure: number; toneMap: string }): Promise<Uint8Array>;
 }
@@ -188,6 +192,10 @@ function createSession(page: Page, browser: Browser, server: StaticServer, pageE
     async readLinear() {
       return toFloat32(await call('readLinear'));
     },
+    async readAovs() {
+      const { albedo, normal, samples } = await call('readAovs');
+      return { albedo: toFloat32(albedo), normal: toFloat32(normal), samples };
+    },
     async readDisplayed(options) {
       const toneMap = options.toneMap as DisplayOptions['toneMap'];
       return new Uint8Array(Buffer.from(await call('readDisplayed', { exposure: options.exposure, toneMap }), 'base64'));
@@ -202,10 +210,6 @@ function createSession(page: Page, browser: Browser, server: StaticServer, pageE
       const request = { width, height, color: base64(input.color), albedo: base64(input.albedo), normal: base64(input.normal), options };
       const result = await call('denoise', request);
       return { ...result, data: toFloat32(result.data) };
-    },
-    async readAovs() {
-      const { albedo, normal } = await call('readAovs');
-      return { albedo: toFloat32(albedo), normal: toFloat32(normal) };
     },
     async displayLinear(linear, width, height, options) {
       const toneMap = options.toneMap as DisplayOptions['toneMap'];

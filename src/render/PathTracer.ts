@@ -12,6 +12,7 @@ import { NO_ASSETS, type SceneAssets } from '../scene/assets';
 import type { Scene } from '../scene/types';
 import { type AnyCanvas, createContext, rendererInfo, requireFloatTargets } from './gl/context';
 import { PingPong } from './gl/targets';
+import { AovPass } from './passes/aov';
 import { DisplayPass, type DisplayOptions } from './passes/display';
 import { TracePass } from './passes/trace';
 import type { SamplerKind } from './sampling';
@@ -36,12 +37,38 @@ export interface PathTracerOptions {
   preserveDrawingBuffer?: boolean;
   /** The decoded files the scene names (`loadSceneAssets`); needed when it has a map or meshes. */
   assets?: SceneAssets;
+  /**
+   * Accumulate the denoiser's guides (albedo, normal; see readAovs) while
+   * rendering, up to AOV_SAMPLES samples per pixel. Default false: readAovs
+   * then renders them when called.
+   */
+  aovs?: boolean;
+}
+
+/** Most samples per pixel of the guide buffers: they converge fast (no lighting) and OIDN needs no more. */
+export const AOV_SAMPLES = 16;
+
+/**
+ * The denoiser's guide buffers (Open Image Denoise's auxiliary images),
+ * RGBA float32, rows top to bottom, width*height*4 each, as readLinear. rgb:
+ * the mean over `samples` samples per pixel; alpha: the fraction of samples
+ * rejected as non-finite (0 unless something is wrong).
+ */
+export interface Aovs {
+  /** Linear albedo in [0, 1] of the first non-specular hit (through ideal mirrors and smooth glass); the sky's clamped radiance. */
+  albedo: Float32Array;
+  /** World-space shading normal of that hit, components in [-1, 1] (shorter where a pixel sees several); 0 for the sky. */
+  normal: Float32Array;
+  /** Samples per pixel behind them. */
+  samples: number;
 }
 
 interface Resources {
   trace: TracePass;
   display: DisplayPass;
   sums: PingPong;
+  /** The guide buffers; created on first use. */
+  aov: AovPass | null;
 }
 
 export class PathTracer {
@@ -52,6 +79,7 @@ export class PathTracer {
   private seed: number;
   private readonly sampler: SamplerKind;
   private readonly russianRoulette: boolean;
+  private keepAovs: boolean;
   private size: { width: number; height: number };
   private samples = 0;
   /** Counts restarts of accumulation (scene, size, seed, reset); not a context loss. */
@@ -67,6 +95,7 @@ export class PathTracer {
     this.seed = options.seed ?? 0;
     this.sampler = options.sampler ?? 'kronecker';
     this.russianRoulette = options.russianRoulette ?? false;
+    this.keepAovs = options.aovs ?? false;
     this.gl = createContext(this.canvas, options.preserveDrawingBuffer ?? false);
     this.canvas.addEventListener('webglcontextlost', this.onContextLost as EventListener);
     this.canvas.addEventListener('webglcontextrestored', this.onContextRestored as EventListener);
@@ -126,6 +155,7 @@ export class PathTracer {
     if (this.resources) {
       this.resources.sums.dispose();
       this.resources.sums = new PingPong(this.gl, this.size.width, this.size.height);
+      this.resources.aov?.resize(this.size.width, this.size.height);
       this.resources.trace.setScene(this.scene, this.assets, this.size.width, this.size.height);
     }
     this.reset();
@@ -141,6 +171,12 @@ export class PathTracer {
     this.samples = 0;
     this.generation++;
     this.resources?.sums.clear();
+    this.resources?.aov?.clear();
+  }
+
+  /** Whether render() accumulates the guide buffers (PathTracerOptions.aovs). */
+  setAovs(enabled: boolean): void {
+    this.keepAovs = enabled;
   }
 
   /**
@@ -157,8 +193,32 @@ export class PathTracer {
       r.trace.draw(r.sums, this.samples, n, this.seed);
       this.samples += n;
       done += n;
+      if (this.keepAovs) this.completeAovs(r);
     }
     return this.samples;
+  }
+
+  /**
+   * The denoiser's guides (see Aovs) for the current accumulation, over
+   * min(AOV_SAMPLES, sampleCount) samples per pixel (at least 1): the
+   * samples missing are rendered now (one draw), so the guides are there
+   * whether or not render() kept them.
+   */
+  readAovs(): Aovs {
+    const r = this.requireResources();
+    const aov = this.completeAovs(r);
+    const sums = aov.readSums();
+    const { width, height } = this.size;
+    const mean = (data: Float32Array) => flipRows(data.map((v) => v / aov.samples), width, height, 4);
+    return { albedo: mean(sums.albedo), normal: mean(sums.normal), samples: aov.samples };
+  }
+
+  /** Brings the guides to min(AOV_SAMPLES, sampleCount) samples per pixel (at least 1). */
+  private completeAovs(r: Resources): AovPass {
+    r.aov ??= new AovPass(this.gl, this.size.width, this.size.height, this.sampler);
+    const missing = Math.min(AOV_SAMPLES, Math.max(1, this.samples)) - r.aov.samples;
+    if (missing > 0) r.aov.draw(r.trace, missing, this.seed);
+    return r.aov;
   }
 
   /** Draws the current mean image to the canvas. */
@@ -259,7 +319,8 @@ export class PathTracer {
     trace.setScene(this.scene, this.assets, this.size.width, this.size.height);
     // An empty vertex array: the full-screen triangle comes from gl_VertexID.
     this.gl.bindVertexArray(this.gl.createVertexArray());
-    return { trace, display, sums };
+    const aov = this.keepAovs ? new AovPass(this.gl, this.size.width, this.size.height, this.sampler) : null;
+    return { trace, display, sums, aov };
   }
 
   private disposeResources(): void {
@@ -269,6 +330,7 @@ export class PathTracer {
     r.trace.dispose();
     r.display.dispose();
     r.sums.dispose();
+    r.aov?.dispose();
   }
 
   private requireResources(): Resources {

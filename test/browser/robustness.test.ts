@@ -2,7 +2,11 @@
  * Numerical robustness: valid but nasty scenes, each rendered small for a few
  * dozen samples per pixel. Whatever the scene, no pixel may be NaN, infinite
  * or negative, and the shader must not have rejected a single sample (the
- * alpha channel of readLinear() is the fraction of rejected samples).
+ * alpha channel of readLinear() is the fraction of rejected samples). Nor
+ * may the image be all black or constant: a shader that gave up (wrote 0,
+ * or one colour everywhere) would pass the finiteness checks alone. Each
+ * case sees lit geometry or a light, and Monte Carlo noise alone makes pixels
+ * differ, so a spread (max - min) below 1e-3 of the maximum is a failure.
  *
  * Degenerate cameras that cannot be rendered as asked are decided by the
  * parser (docs/scene-format.md, docs/limits-and-errors.md): `up` parallel to
@@ -120,17 +124,21 @@ interface Summary {
   negative: number;
   rejected: number;
   max: number;
+  min: number;
   first: string;
 }
 
 function summarize(data: Float32Array): Summary {
-  const s: Summary = { nonFinite: 0, negative: 0, rejected: 0, max: 0, first: '' };
+  const s: Summary = { nonFinite: 0, negative: 0, rejected: 0, max: 0, min: Infinity, first: '' };
   for (let p = 0; p < data.length / 4; p++) {
     for (let c = 0; c < 3; c++) {
       const v = data[p * 4 + c];
       if (!Number.isFinite(v)) s.nonFinite++;
       else if (v < 0) s.negative++;
-      else s.max = Math.max(s.max, v);
+      else {
+        s.max = Math.max(s.max, v);
+        s.min = Math.min(s.min, v);
+      }
       if ((!Number.isFinite(v) || v < 0) && !s.first) s.first = `pixel ${p} channel ${c} = ${v}`;
     }
     const a = data[p * 4 + 3];
@@ -159,6 +167,7 @@ describe('nasty but valid scenes render without NaN, Inf, negative or rejected s
     expect(await session().render(SPP)).toBe(SPP);
     const s = summarize(await session().readLinear());
     expect(s, `${name}: ${s.first}`).toMatchObject({ nonFinite: 0, negative: 0, rejected: 0 });
+    expectLitAndVaried(name, s);
   });
 
   it('sanity: the checks see light (the base scene is not black)', async () => {
@@ -194,8 +203,26 @@ describe('nasty but valid scenes render without NaN, Inf, negative or rejected s
     await session().render(SPP);
     const s = summarize(await session().readLinear());
     expect(s, s.first).toMatchObject({ nonFinite: 0, negative: 0, rejected: 0 });
+    expectLitAndVaried('huge emission', s);
   });
 });
+
+/**
+ * Cases whose exact image is black, as in Mitsuba: inside a one-sided mirror
+ * sphere nothing reflects and nothing gets in; inside a light (emitting
+ * outward only, reflecting nothing) likewise; zero emission everywhere.
+ * Every other case must show light and noise.
+ */
+const EXPECTED_BLACK = new Set(['camera inside a mirror sphere', 'camera inside a light', 'zero intensities everywhere']);
+
+function expectLitAndVaried(name: string, s: Summary): void {
+  if (EXPECTED_BLACK.has(name)) {
+    expect(s.max, `${name}: must be exactly black`).toBe(0);
+    return;
+  }
+  expect(s.max, `${name}: the image is all black`).toBeGreaterThan(0);
+  expect(s.max - s.min, `${name}: the image is constant (min ${s.min}, max ${s.max})`).toBeGreaterThan(1e-3 * s.max);
+}
 
 describe('degenerate cameras the parser rejects, with a clear message', () => {
   const camera = (extra: Json) => ({ camera: { position: [0, 1, 5], target: [0, 0, 0], ...extra } });

@@ -39,20 +39,21 @@ function checkParse(input: unknown): void {
   try {
     scene = parseScene(input);
   } catch (error) {
-    expect(error).toBeInstanceOf(SceneError);
+    expect(error, `parseScene threw something other than a SceneError: ${String(error)}`).toBeInstanceOf(SceneError);
     const { issues } = error as SceneError;
-    expect(issues.length).toBeGreaterThan(0);
+    expect(issues.length, 'a SceneError without issues').toBeGreaterThan(0);
     for (const issue of issues) {
-      expect(typeof issue.path).toBe('string');
-      expect(typeof issue.message).toBe('string');
-      expect(issue.message.length).toBeGreaterThan(0);
+      const what = `issue ${JSON.stringify(issue)}`;
+      expect(typeof issue.path, `${what}: path is not a string`).toBe('string');
+      expect(typeof issue.message, `${what}: message is not a string`).toBe('string');
+      expect(issue.message.length, `${what}: empty message`).toBeGreaterThan(0);
       // The last-resort catch is for hostile objects (throwing getters), never for data like this.
-      expect(issue.message).not.toMatch(/^could not be read/);
+      expect(issue.message, `${what}: the last-resort message for plain data`).not.toMatch(/^could not be read/);
     }
     return;
   }
   checkScene(scene);
-  expect(parseScene(serializeScene(scene))).toStrictEqual(scene);
+  expect(parseScene(serializeScene(scene)), 'serialize then parse changed the scene').toStrictEqual(scene);
 }
 
 /** The rules of docs/scene-format.md, restated independently of the schema; each check says what failed. */
@@ -290,8 +291,8 @@ describe('fuzzing parseScene', () => {
         const result = safeParseScene(json);
         if (!result.ok) throw new Error(`rejected a valid scene: ${JSON.stringify(result.issues)}`);
         checkScene(result.scene);
-        expect(parseScene(serializeScene(result.scene))).toStrictEqual(result.scene);
-        expect(parseSceneText(JSON.stringify(serializeScene(result.scene)))).toStrictEqual(result.scene);
+        expect(parseScene(serializeScene(result.scene)), 'serialize then parse changed the scene').toStrictEqual(result.scene);
+        expect(parseSceneText(JSON.stringify(serializeScene(result.scene))), 'serialize, stringify, parse text changed the scene').toStrictEqual(result.scene);
       }),
       { numRuns: 1000 },
     );
@@ -329,7 +330,7 @@ describe('fuzzing parseScene', () => {
           checkScene(parseSceneText(input));
         } catch (error) {
           if (!(error instanceof SceneError)) throw error;
-          expect(error.issues.length).toBeGreaterThan(0);
+          expect(error.issues.length, 'a SceneError without issues').toBeGreaterThan(0);
         }
       }),
       { numRuns: 1000 },
@@ -348,12 +349,12 @@ describe('every bad value is reported at its own path', () => {
     ['null', null],
     ['an object', {}],
   ])('%s at any number', (_, value) => {
-    expect(leaves.length).toBeGreaterThan(50);
+    expect(leaves.length, 'numbers found in the seed fixture').toBeGreaterThan(50);
     for (const path of leaves) {
       const copy = structuredClone(seed);
       containerOf(copy, path)[path[path.length - 1]] = value;
       const result = safeParseScene(copy);
-      expect(result.ok ? [] : result.issues.map((issue) => issue.path)).toEqual([formatPath(path)]);
+      expect(result.ok ? [] : result.issues.map((issue) => issue.path), `${JSON.stringify(value)} at ${formatPath(path)}`).toEqual([formatPath(path)]);
     }
   });
 
@@ -364,7 +365,7 @@ describe('every bad value is reported at its own path', () => {
         containerOf(copy, path)[path[path.length - 1]] = value;
         const result = safeParseScene(copy);
         if (result.ok) checkScene(result.scene);
-        else expect(result.issues.map((issue) => issue.path)).toEqual([formatPath(path)]);
+        else expect(result.issues.map((issue) => issue.path), `${value} at ${formatPath(path)}`).toEqual([formatPath(path)]);
       }
     }
   });
@@ -374,12 +375,12 @@ describe('every bad value is reported at its own path', () => {
       const value = path.reduce((node: any, key) => node[key], seed);
       return typeof value === 'object' && value !== null && !Array.isArray(value);
     });
-    expect(objects.length).toBeGreaterThan(10);
+    expect(objects.length, 'objects found in the seed fixture').toBeGreaterThan(10);
     for (const path of objects) {
       const copy: any = structuredClone(seed);
       path.reduce((node: any, key) => node[key], copy).zz = 1;
       const result = safeParseScene(copy);
-      expect(result.ok ? [] : result.issues).toEqual([{ path: formatPath([...path, 'zz']), message: 'unknown key' }]);
+      expect(result.ok ? [] : result.issues, `unknown key zz in ${formatPath(path) || 'the root'}`).toEqual([{ path: formatPath([...path, 'zz']), message: 'unknown key' }]);
     }
   });
 });

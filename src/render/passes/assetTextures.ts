@@ -61,6 +61,11 @@ function takePrebuilt(key: string, data: TriangleMesh[]): PackedBvh | null {
   return ready.packed;
 }
 
+/** Hands in the distribution of `image` built elsewhere (the page builds it in a Worker, off the main thread). */
+export function rememberEnvironmentDistribution(image: EnvironmentImage, distribution: EnvironmentDistribution): void {
+  distributions.set(image, distribution);
+}
+
 export class AssetTextures {
   private environment: { image: EnvironmentImage; textures: EnvironmentTextures } | null = null;
   private world: (WorldMeshes & { key: string; data: TriangleMesh[] }) | null = null;

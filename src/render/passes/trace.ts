@@ -58,6 +58,8 @@ export class TracePass {
   private readonly defines: Record<string, string | number>;
   /** The scene's decoded files on the GPU (environment map). */
   private readonly assets: AssetTextures;
+  /** What setScene last uploaded: other passes built from the scene chunks need its camera and features. */
+  private current: { scene: Scene; frame: CameraFrame; width: number; height: number; features: SceneFeatures } | null = null;
 
   constructor(
     private readonly gl: WebGL2RenderingContext,
@@ -114,6 +116,7 @@ export class TracePass {
     gl.bindTexture(gl.TEXTURE_2D, null);
     this.program = this.programFor(packed.features);
     const frame = cameraFrame(scene.camera);
+    this.current = { scene, frame, width, height, features: packed.features };
     for (const program of this.programs.values()) {
       this.setCameraUniforms(program, scene, frame, width, height);
       this.assets.setUniforms(program, scene);
@@ -139,6 +142,38 @@ export class TracePass {
     );
   }
 
+  /** The features of the current scene: other passes compile their variants with featureDefines(features). */
+  get features(): SceneFeatures {
+    if (!this.current) throw new Error('TracePass: no scene uploaded');
+    return this.current.features;
+  }
+
+  /**
+   * Prepares another program built from the scene chunks (the AOV pass) to
+   * read the current scene: binds its uniform block, the data texture (unit
+   * 1) and the asset textures (units 2-6), and sets the camera and asset
+   * uniforms. Leaves `program` in use and texture unit 0 active.
+   */
+  bindScene(program: Program): void {
+    if (!this.current) throw new Error('TracePass: no scene uploaded');
+    const { scene, frame, width, height } = this.current;
+    const blockIndex = this.gl.getUniformBlockIndex(program.handle, 'SceneBlock');
+    this.gl.uniformBlockBinding(program.handle, blockIndex, SCENE_BLOCK_BINDING);
+    this.setCameraUniforms(program, scene, frame, width, height);
+    this.assets.setUniforms(program, scene);
+    this.bindSceneData(program);
+  }
+
+  /** Binds the uniform block, the asset textures and the data texture; leaves unit 0 active. */
+  private bindSceneData(program: Program): void {
+    const gl = this.gl;
+    gl.bindBufferBase(gl.UNIFORM_BUFFER, SCENE_BLOCK_BINDING, this.sceneBuffer);
+    this.assets.bind(program);
+    gl.activeTexture(gl.TEXTURE0 + SCENE_TEXTURE_UNIT);
+    gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
+    gl.activeTexture(gl.TEXTURE0);
+  }
+
   /** One draw: adds `samples` samples per pixel, numbered from `firstSample`. */
   draw(targets: PingPong, firstSample: number, samples: number, seed: number): void {
     const gl = this.gl;
@@ -146,11 +181,7 @@ export class TracePass {
       { uFirstSample: firstSample, uSamplesPerDraw: samples, uSeed: seed >>> 0 },
       UNIFORM_TYPES,
     );
-    gl.bindBufferBase(gl.UNIFORM_BUFFER, SCENE_BLOCK_BINDING, this.sceneBuffer);
-    this.assets.bind(this.program);
-    gl.activeTexture(gl.TEXTURE0 + SCENE_TEXTURE_UNIT);
-    gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
-    gl.activeTexture(gl.TEXTURE0);
+    this.bindSceneData(this.program);
     gl.bindTexture(gl.TEXTURE_2D, targets.read.texture);
     gl.bindFramebuffer(gl.FRAMEBUFFER, targets.write.framebuffer);
     gl.viewport(0, 0, targets.write.width, targets.write.height);

@@ -81,8 +81,12 @@ vec3 dielectricSampleDirection(Material m, vec3 wo, vec3 u, vec2 circle, out boo
   float F = fresnelDielectric(woh, m.ior, cosThetaT, etaTI);
   bool reflects = u.z < F;
   deltaWeight = reflects ? vec3(1.0) : m.color * (etaTI * etaTI);
-  vec3 refracted = h * (woh * etaTI + cosThetaT) - wo * etaTI;
-  return reflects ? 2.0 * woh * h - wo : refracted;
+  vec3 wi = reflects ? 2.0 * woh * h - wo : h * (woh * etaTI + cosThetaT) - wo * etaTI;
+  // A rough microfacet can send the reflection below the macro surface or
+  // the refraction above it: no sample (as Mitsuba's roughdielectric), since
+  // bsdfEval would weigh that direction by the other lobe's pdf.
+  bool sideOk = reflects ? wi.z * wo.z > 0.0 : wi.z * wo.z < 0.0;
+  return isDelta || sideOk ? wi : vec3(0.0);
 }
 
 bool dielectricHasNonDeltaLobe(Material m) { return !dielectricIsDelta(m); }
