@@ -8,9 +8,11 @@ import { NO_ASSETS, type SceneAssets } from '../scene/assets';
 import { SnapshotKeeper } from '../render/snapshot';
 import { MAX_LIGHTS, MAX_SPHERES } from '../scene/limits';
 import { cameraRay } from '../scene/camera';
-import { pickObject, pickSurface, projectSphere, type ObjectHit, type ObjectKind } from '../scene/picking';
+import { pickObject, pickSurface, projectSphere, type MeshLookup, type ObjectHit, type ObjectKind } from '../scene/picking';
 import type { Camera, Scene, Vec3 } from '../scene/types';
 import { History } from './history';
+import { worldBoundingSphere } from './meshFit';
+import { MeshUploads } from './meshUploads';
 import { RenderLoop, type RenderStats, type ViewSettings } from './renderLoop';
 import type { SavedState } from './savedState';
 
@@ -45,6 +47,10 @@ export class App {
   private fullSize = { width: 1, height: 1 };
   private movingUntil = 0;
   private readonly listeners = new Set<() => void>();
+  /** Uploads the scene, building a large mesh's BVH in a worker first (meshUploads.ts). */
+  readonly meshUploads: MeshUploads;
+  /** Reports a failure of a deferred upload (set by the page). */
+  onUploadError: (message: string) => void = () => {};
 
   constructor(
     readonly canvas: HTMLCanvasElement,
@@ -56,8 +62,11 @@ export class App {
     this.scene = clone(scene);
     this.assets = assets;
     this.homeCamera = structuredClone(scene.camera);
-    this.tracer = new PathTracer(canvas, this.scene, { width: 64, height: 48, assets });
+    // Meshes come with the first upload: their BVH is built in the worker, not while the page starts.
+    this.tracer = new PathTracer(canvas, { ...this.scene, meshes: [] }, { width: 64, height: 48, assets });
     this.snapshots = new SnapshotKeeper(this.tracer);
+    this.meshUploads = new MeshUploads(this.tracer, () => ({ scene: this.scene, assets: this.assets }), (m) => this.onUploadError(m));
+    this.upload();
     const beforeFrame = () => {
       this.applyResolution();
       this.snapshots.tick();
@@ -171,7 +180,7 @@ export class App {
     const selection = this.selection;
     if (!selection) return;
     this.selection = null;
-    this.edit((s) => (selection.kind === 'sphere' ? s.spheres : s.lights).splice(selection.index, 1));
+    this.edit((s) => (selection.kind === 'sphere' ? s.spheres : selection.kind === 'mesh' ? s.meshes : s.lights).splice(selection.index, 1));
   }
 
   select(selection: Selection | null): void {
@@ -179,10 +188,11 @@ export class App {
     this.changed();
   }
 
-  /** The selected object's centre (a sphere's center or a light's position), live. */
+  /** The selected object's centre (a sphere's center, a light's or a mesh's position), live: moving it moves the object. */
   selectedCenter(): Vec3 | null {
     const s = this.selection;
     if (!s) return null;
+    if (s.kind === 'mesh') return this.scene.meshes[s.index]?.position ?? null;
     return s.kind === 'sphere' ? this.scene.spheres[s.index]?.center ?? null : this.scene.lights[s.index]?.position ?? null;
   }
 
@@ -206,13 +216,26 @@ export class App {
   }
 
   pick(clientX: number, clientY: number): ObjectHit | null {
-    return pickObject(this.scene, this.rayAt(clientX, clientY));
+    return pickObject(this.scene, this.rayAt(clientX, clientY), this.meshLookup);
+  }
+
+  /** The decoded triangles of a file the scene names. */
+  readonly meshLookup: MeshLookup = (file) => this.assets.meshes.get(file);
+
+  /** The selected object's bounding sphere (a mesh's from its bounds), for the outline. */
+  private selectedSphere(): { center: Vec3; radius: number } | null {
+    const s = this.selection;
+    const mesh = s?.kind === 'mesh' ? this.scene.meshes[s.index] : undefined;
+    const data = mesh && this.assets.meshes.get(mesh.file);
+    if (mesh && data) return worldBoundingSphere(mesh, data);
+    const center = this.selectedCenter();
+    return center && s?.kind !== 'mesh' ? { center, radius: this.selectedRadius() } : null;
   }
 
   /** Focuses the thin lens on the surface under a client point. */
   focusAt(clientX: number, clientY: number): void {
     const ray = this.rayAt(clientX, clientY);
-    const hit = pickSurface(this.scene, ray);
+    const hit = pickSurface(this.scene, ray, this.meshLookup);
     if (!hit) return;
     const { position, target } = this.scene.camera;
     const forward = [0, 1, 2].map((i) => target[i] - position[i]);
@@ -224,9 +247,9 @@ export class App {
 
   /** The selection outline in CSS pixels over the canvas, or null. */
   selectionOutline(): { x: number; y: number; r: number } | null {
-    const center = this.selectedCenter();
-    if (!center) return null;
-    const outline = projectSphere(this.scene.camera, this.aspect, center, this.selectedRadius());
+    const sphere = this.selectedSphere();
+    if (!sphere) return null;
+    const outline = projectSphere(this.scene.camera, this.aspect, sphere.center, sphere.radius);
     if (!outline) return null;
     const width = this.canvas.clientWidth;
     const height = this.canvas.clientHeight;
@@ -269,7 +292,7 @@ export class App {
   private replaceScene(scene: Scene): void {
     this.scene = scene;
     const s = this.selection;
-    if (s && !(s.kind === 'sphere' ? scene.spheres[s.index] : scene.lights[s.index])) this.selection = null;
+    if (s && !(s.kind === 'sphere' ? scene.spheres : s.kind === 'mesh' ? scene.meshes : scene.lights)[s.index]) this.selection = null;
     this.upload();
     this.changed();
   }
@@ -284,6 +307,6 @@ export class App {
   }
 
   private upload(): void {
-    this.tracer.setScene(this.scene, this.assets);
+    this.meshUploads.upload();
   }
 }

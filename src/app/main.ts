@@ -16,6 +16,7 @@ import { clearError, notify, showError, showFatal, showIssues } from './messages
 import { Autosave, readStartState, type SaveStatus, type StartState } from './persistence';
 import { linkDigest } from './savedState';
 import { SceneLoader } from './sceneLoader';
+import { addModelFile, isModelFile, MESH_EXAMPLES, meshExampleFiles } from './meshControls';
 import { EnvironmentMaps, MAP_FILE_PATTERN } from './environmentMaps';
 import { bundledMapName } from './bundledMaps';
 import { MAP_EXAMPLES } from './mapExamples';
@@ -57,6 +58,7 @@ async function start(): Promise<void> {
   const autosave = new Autosave(app, showSaveStatus);
   const maps = new EnvironmentMaps(app, autosave, showIssues, clearError);
   const panel = new Panel(app, $('panel'), maps);
+  app.onUploadError = (message) => showError(message);
   const loader = openStartState(app, autosave, startState);
   attachInput(app, canvas);
   attachKeys(app);
@@ -167,6 +169,11 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader, maps: Envi
       void maps.useFile(files[0]);
       return;
     }
+    if (files.every((f) => isModelFile(f.name))) {
+      // Models alone are added to the open scene, one after another.
+      void files.reduce<Promise<unknown>>((done, f) => done.then(() => addModelFile(app, f, (kept) => void autosave.keepFiles(app.scene, kept))), Promise.resolve());
+      return;
+    }
     const scene = files.find((f) => /\.json$/i.test(f.name)) ?? (files.length === 1 ? files[0] : undefined);
     if (!scene) {
       showIssues('These files', [{ path: '', message: 'none of them is a scene (.json): open the scene file together with its maps and models' }]);
@@ -207,10 +214,12 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader, maps: Envi
     option.textContent = name;
     examples.append(option);
   }
+  for (const name of Object.keys(MESH_EXAMPLES)) examples.append(new Option(name, name));
   examples.addEventListener('change', () => {
     const name = examples.value;
     examples.value = '';
     if (Object.hasOwn(exampleScenes, name)) void loader.open(`The example "${name}"`, () => safeParseScene(exampleScenes[name]));
+    if (Object.hasOwn(MESH_EXAMPLES, name)) void meshExampleFiles().then((files) => loader.open(`The example "${name}"`, () => safeParseScene(MESH_EXAMPLES[name]), files));
   });
 
   $('save-json').addEventListener('click', () => {

@@ -1,5 +1,5 @@
 /**
- * The selected sphere's material controls (scene format version 2): the
+ * The selected sphere's or mesh's material controls (scene format version 2): the
  * material type (standard or dielectric), its color or tint, roughness, the
  * dielectric's index of refraction, and emission. The ground keeps the
  * panel's standard-only controls: the format forbids glass and emission there.
@@ -11,8 +11,11 @@ import type GUI from 'lil-gui';
 import type { Controller } from 'lil-gui';
 import { hexToLinear, linearToHex } from '../scene/color';
 import { MAX_IOR, MIN_IOR } from '../scene/limits';
-import type { Emission, Material, MaterialType, Sphere, Vec3 } from '../scene/types';
+import type { Emission, Material, MaterialType, Vec3 } from '../scene/types';
 import type { App } from './App';
+
+/** A sphere or a mesh: anything with a material. */
+type Sphere = { material: Material };
 
 export const MATERIAL_TYPES: readonly MaterialType[] = ['standard', 'dielectric'];
 

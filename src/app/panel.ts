@@ -10,6 +10,7 @@ import { MAX_BOUNCES } from '../scene/limits';
 import type { Ground, Material } from '../scene/types';
 import type { App } from './App';
 import { addSphereMaterialControls } from './materialControls';
+import { addMeshControls } from './meshControls';
 import { addEnvironmentControls } from './environmentControls';
 import type { EnvironmentMaps } from './environmentMaps';
 
@@ -47,7 +48,7 @@ export class Panel {
   private currentSelectionKey(): string {
     const s = this.app.selection;
     if (!s) return '';
-    const type = s.kind === 'sphere' ? this.app.scene.spheres[s.index]?.material.type : '';
+    const type = s.kind === 'light' ? '' : (s.kind === 'sphere' ? this.app.scene.spheres : this.app.scene.meshes)[s.index]?.material.type;
     return `${s.kind}:${s.index}:${type ?? ''}`;
   }
 
@@ -68,7 +69,9 @@ export class Panel {
     const sphere = () => app.scene.spheres[s.index];
     const light = () => app.scene.lights[s.index];
     const edit = (f: () => void) => app.live(f);
-    if (s.kind === 'sphere') {
+    if (s.kind === 'mesh') {
+      addMeshControls(folder, app, () => app.scene.meshes[s.index], (c) => this.tracked(c));
+    } else if (s.kind === 'sphere') {
       addSphereMaterialControls(folder, app, sphere, (c) => this.tracked(c));
       this.tracked(folder.add({
         get radius() { return sphere().radius; },

@@ -5,9 +5,13 @@
  * exactly what is drawn under the cursor. Pure: no DOM, no GL.
  */
 import { cameraFrame, cameraRay, type Ray } from './camera';
-import type { Camera, Scene, Vec3 } from './types';
+import { meshToWorldMatrix } from './mesh/transform';
+import type { Camera, Mesh, Scene, TriangleMesh, Vec3 } from './types';
 
-export type ObjectKind = 'sphere' | 'light';
+export type ObjectKind = 'sphere' | 'light' | 'mesh';
+
+/** The decoded triangles of a mesh file by its name as written (undefined: not loaded, not pickable). */
+export type MeshLookup = (file: string) => TriangleMesh | undefined;
 
 export interface ObjectHit {
   kind: ObjectKind;
@@ -45,8 +49,8 @@ export function intersectPlaneY(ray: Ray, height: number): number | null {
   return t > T_MIN ? t : null;
 }
 
-/** The nearest sphere or light on the ray (the ground does not hide objects behind it here). */
-export function pickObject(scene: Scene, ray: Ray): ObjectHit | null {
+/** The nearest sphere, light or mesh on the ray (meshes only with `meshes`); the ground hides what is below it. */
+export function pickObject(scene: Scene, ray: Ray, meshes?: MeshLookup): ObjectHit | null {
   let best: ObjectHit | null = null;
   const consider = (kind: ObjectKind, index: number, center: Vec3, radius: number) => {
     const t = intersectSphere(ray, center, radius);
@@ -54,6 +58,11 @@ export function pickObject(scene: Scene, ray: Ray): ObjectHit | null {
   };
   scene.spheres.forEach((s, i) => consider('sphere', i, s.center, s.radius));
   scene.lights.forEach((l, i) => consider('light', i, l.position, l.radius));
+  scene.meshes.forEach((mesh, i) => {
+    const data = meshes?.(mesh.file);
+    const t = data ? intersectMesh(ray, mesh, data) : null;
+    if (t !== null && (best === null || t < best.t)) best = { kind: 'mesh', index: i, t, point: along(ray, t) };
+  });
   const ground = groundT(scene, ray);
   const hit = best as ObjectHit | null;
   // An object below the ground plane is hidden by it, as in the render.
@@ -62,16 +71,16 @@ export function pickObject(scene: Scene, ray: Ray): ObjectHit | null {
 }
 
 /** The nearest visible surface on the ray, the ground included (for focusing). */
-export function pickSurface(scene: Scene, ray: Ray): SurfaceHit | null {
-  const object = pickObject(scene, ray);
+export function pickSurface(scene: Scene, ray: Ray, meshes?: MeshLookup): SurfaceHit | null {
+  const object = pickObject(scene, ray, meshes);
   if (object) return object;
   const t = groundT(scene, ray);
   return t === null ? null : { kind: 'ground', index: -1, t, point: along(ray, t) };
 }
 
 /** Picks at image point (u right, v down, in [0, 1]) for an image of the given aspect (width / height). */
-export function pickAt(scene: Scene, aspect: number, u: number, v: number): ObjectHit | null {
-  return pickObject(scene, cameraRay(scene.camera, aspect, u, v));
+export function pickAt(scene: Scene, aspect: number, u: number, v: number, meshes?: MeshLookup): ObjectHit | null {
+  return pickObject(scene, cameraRay(scene.camera, aspect, u, v), meshes);
 }
 
 export interface Projection {
@@ -110,6 +119,103 @@ export function projectSphere(
   const apparent = radius / Math.sqrt(Math.max(p.depth * p.depth - radius * radius, 1e-12));
   return { ...p, radius: Math.min(apparent / (2 * tanHalf), 10) };
 }
+
+/** Object-space bounds per decoded mesh (computed once: picking tests the box before any triangle). */
+const boundsCache = new WeakMap<TriangleMesh, { min: Vec3; max: Vec3 }>();
+
+export function meshBounds(data: TriangleMesh): { min: Vec3; max: Vec3 } {
+  let bounds = boundsCache.get(data);
+  if (!bounds) {
+    const min: Vec3 = [Infinity, Infinity, Infinity];
+    const max: Vec3 = [-Infinity, -Infinity, -Infinity];
+    const p = data.positions;
+    for (let i = 0; i < p.length; i += 3) {
+      for (let k = 0; k < 3; k++) {
+        if (p[i + k] < min[k]) min[k] = p[i + k];
+        if (p[i + k] > max[k]) max[k] = p[i + k];
+      }
+    }
+    boundsCache.set(data, (bounds = { min, max }));
+  }
+  return bounds;
+}
+
+/**
+ * Nearest t > T_MIN where the ray meets the placed mesh (either side of a
+ * triangle), or null. The ray goes into object space (t is unchanged by an
+ * affine map), is tested against the object-space box, then against every
+ * triangle (Moller-Trumbore): a click is rare, so no BVH is kept here.
+ */
+export function intersectMesh(ray: Ray, mesh: Mesh, data: TriangleMesh): number | null {
+  const inverse = invertAffine(meshToWorldMatrix(mesh));
+  const o = transformPoint(inverse, ray.origin, 1);
+  const d = transformPoint(inverse, ray.direction, 0);
+  const { min, max } = meshBounds(data);
+  if (!hitsBox(o, d, min, max)) return null;
+  const p = data.positions;
+  const idx = data.indices;
+  let best = Infinity;
+  for (let i = 0; i < idx.length; i += 3) {
+    const t = intersectTriangle(o, d, p, idx[i] * 3, idx[i + 1] * 3, idx[i + 2] * 3);
+    if (t > T_MIN && t < best) best = t;
+  }
+  return best < Infinity ? best : null;
+}
+
+function intersectTriangle(o: Vec3, d: Vec3, p: Float32Array, a: number, b: number, c: number): number {
+  const e1x = p[b] - p[a], e1y = p[b + 1] - p[a + 1], e1z = p[b + 2] - p[a + 2];
+  const e2x = p[c] - p[a], e2y = p[c + 1] - p[a + 1], e2z = p[c + 2] - p[a + 2];
+  const px = d[1] * e2z - d[2] * e2y, py = d[2] * e2x - d[0] * e2z, pz = d[0] * e2y - d[1] * e2x;
+  const det = e1x * px + e1y * py + e1z * pz;
+  if (det === 0) return NaN;
+  const inv = 1 / det;
+  const sx = o[0] - p[a], sy = o[1] - p[a + 1], sz = o[2] - p[a + 2];
+  const u = (sx * px + sy * py + sz * pz) * inv;
+  if (u < 0 || u > 1) return NaN;
+  const qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
+  const v = (d[0] * qx + d[1] * qy + d[2] * qz) * inv;
+  if (v < 0 || u + v > 1) return NaN;
+  return (e2x * qx + e2y * qy + e2z * qz) * inv;
+}
+
+function hitsBox(o: Vec3, d: Vec3, min: Vec3, max: Vec3): boolean {
+  let enter = 0;
+  let exit = Infinity;
+  for (let k = 0; k < 3; k++) {
+    const inv = 1 / d[k];
+    const t0 = (min[k] - o[k]) * inv;
+    const t1 = (max[k] - o[k]) * inv;
+    if (Number.isNaN(t0) || Number.isNaN(t1)) continue; // parallel to the slab, on its boundary: keep testing
+    enter = Math.max(enter, Math.min(t0, t1));
+    exit = Math.min(exit, Math.max(t0, t1));
+  }
+  return enter <= exit * 1.000001;
+}
+
+/** Inverse of a column-major affine 4x4 (the upper 3x3 by cofactors). */
+function invertAffine(m: Float64Array): Float64Array {
+  const [a, b, c, d, e, f, g, h, i] = [m[0], m[4], m[8], m[1], m[5], m[9], m[2], m[6], m[10]];
+  const A = e * i - f * h, B = f * g - d * i, C = d * h - e * g;
+  const det = a * A + b * B + c * C;
+  const r = [
+    [A, c * h - b * i, b * f - c * e],
+    [B, a * i - c * g, c * d - a * f],
+    [C, b * g - a * h, a * e - b * d],
+  ].map((row) => row.map((x) => x / det));
+  const out = new Float64Array(16);
+  for (let row = 0; row < 3; row++) {
+    for (let col = 0; col < 3; col++) out[col * 4 + row] = r[row][col];
+    out[12 + row] = -(r[row][0] * m[12] + r[row][1] * m[13] + r[row][2] * m[14]);
+  }
+  out[15] = 1;
+  return out;
+}
+
+const transformPoint = (m: Float64Array, v: Vec3, w: 0 | 1): Vec3 => [
+  m[0] * v[0] + m[4] * v[1] + m[8] * v[2] + w * m[12],
+  m[1] * v[0] + m[5] * v[1] + m[9] * v[2] + w * m[13],
+  m[2] * v[0] + m[6] * v[1] + m[10] * v[2] + w * m[14],
+];
 
 function groundT(scene: Scene, ray: Ray): number | null {
   if (!scene.ground) return null;

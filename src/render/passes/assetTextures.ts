@@ -10,7 +10,7 @@ import type { SceneAssets } from '../../scene/assets';
 import { transformMesh } from '../../scene/mesh';
 import type { EnvironmentImage, Scene, TriangleMesh } from '../../scene/types';
 import { buildAliasTable } from '../aliasTable';
-import { BVH_TEXTURE_WIDTH, buildBvh, packBvh } from '../bvh';
+import { BVH_TEXTURE_WIDTH, buildBvh, packBvh, type BvhMeshInput, type PackedBvh } from '../bvh';
 import { BvhTextures, uploadFloatTexture } from '../bvhTextures';
 import type { MeshEmitterSlots } from '../packScene';
 import { EnvironmentTextures } from '../environmentTextures';
@@ -31,6 +31,34 @@ export function environmentDistribution(image: EnvironmentImage): EnvironmentDis
     distributions.set(image, distribution);
   }
   return distribution;
+}
+
+/** What the meshes' world-space triangles depend on besides the decoded data: their transforms. */
+function transformsKey(scene: Scene): string {
+  return JSON.stringify(scene.meshes.map((m) => [m.position, m.rotation, m.scale]));
+}
+
+/** The world-space triangles the BVH is built over. */
+export function bvhInputs(scene: Scene, assets: SceneAssets, materials: readonly number[]): BvhMeshInput[] {
+  return scene.meshes.map((mesh, i) => ({ ...transformMesh(assets.meshes.get(mesh.file)!, mesh), material: materials[i] }));
+}
+
+/**
+ * A BVH built ahead (by the page, in a worker: buildBvhAsync over
+ * bvhInputs) for exactly these meshes: the next setMeshes for them takes it
+ * instead of building on the calling thread. Only the latest is kept.
+ */
+let prebuilt: { key: string; data: TriangleMesh[]; packed: PackedBvh } | null = null;
+
+export function offerBvh(scene: Scene, assets: SceneAssets, materials: readonly number[], packed: PackedBvh): void {
+  prebuilt = { key: transformsKey(scene) + JSON.stringify(materials), data: scene.meshes.map((m) => assets.meshes.get(m.file)!), packed };
+}
+
+function takePrebuilt(key: string, data: TriangleMesh[]): PackedBvh | null {
+  const ready = prebuilt;
+  if (!ready || ready.key !== key || ready.data.length !== data.length || !ready.data.every((d, i) => d === data[i])) return null;
+  prebuilt = null;
+  return ready.packed;
 }
 
 /** Hands in the distribution of `image` built elsewhere (the page builds it in a Worker, off the main thread). */
@@ -58,7 +86,7 @@ export class AssetTextures {
    */
   worldMeshes(scene: Scene, assets: SceneAssets): WorldMeshes {
     const data = scene.meshes.map((mesh) => assets.meshes.get(mesh.file)!);
-    const key = JSON.stringify(scene.meshes.map((m) => [m.position, m.rotation, m.scale]));
+    const key = transformsKey(scene);
     const w = this.world;
     if (w && w.key === key && w.data.length === data.length && w.data.every((d, i) => d === data[i])) return w;
     const meshes = scene.meshes.map((mesh, i) => transformMesh(data[i], mesh));
@@ -78,10 +106,13 @@ export class AssetTextures {
     this.bvh?.emissive?.dispose();
     this.bvh = null;
     if (world.meshes.length === 0) return;
-    const inputs = world.meshes.map((mesh, i) => ({ ...mesh, material: materials[i] }));
-    const bvh = buildBvh(inputs);
-    const packed = packBvh(bvh, inputs);
-    const emissive = emitters.length > 0 ? new EmissiveTriangles(this.gl, world, bvh.triangleOrder, emitters) : null;
+    const w = this.world;
+    let packed = w === world ? takePrebuilt(w.key + JSON.stringify(materials), w.data) : null;
+    if (!packed) {
+      const inputs = world.meshes.map((mesh, i) => ({ ...mesh, material: materials[i] }));
+      packed = packBvh(buildBvh(inputs), inputs);
+    }
+    const emissive = emitters.length > 0 ? new EmissiveTriangles(this.gl, world, packed.triangleOrder, emitters) : null;
     this.bvh = { world, key, textures: new BvhTextures(this.gl, packed), emissive };
   }
 

@@ -1,0 +1,101 @@
+/**
+ * Frame times of the page (dist/web) in headless Chromium with a generated
+ * ~1M-triangle mesh at a 512x384 render: the model is opened through the
+ * page's file input as a user would, then every animation-frame gap is
+ * recorded while it decodes, while its BVH is built in the worker, and for
+ * `--seconds` of rendering afterwards; the seed scene without the mesh is
+ * measured first for comparison. Run after `npm run build:web`:
+ *   npx tsx bench/mesh-page-frames.ts [--triangles 1000000] [--seconds 15] [--paused]
+ * (--paused: the render is paused while the model loads, to see the page's own work.)
+ */
+import { mkdtempSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import type { Page } from 'playwright-core';
+import { launchChromium, webRoot } from '../src/node/session';
+import { serveDirectory } from '../src/node/server';
+import { bumpySpherePly } from './meshGen';
+
+const option = (argv: string[], name: string, fallback: string) => {
+  const i = argv.indexOf(`--${name}`);
+  return i >= 0 && i + 1 < argv.length ? argv[i + 1] : fallback;
+};
+
+function recordFrames(): void {
+  const w = window as unknown as { __frames: number[] };
+  w.__frames = [];
+  const tick = (t: number) => {
+    w.__frames.push(t);
+    requestAnimationFrame(tick);
+  };
+  requestAnimationFrame(tick);
+}
+
+const now = (page: Page) => page.evaluate(() => performance.now());
+
+async function gaps(page: Page, from: number, to: number): Promise<string> {
+  const frames = await page.evaluate(() => (window as unknown as { __frames: number[] }).__frames);
+  const inside = frames.filter((t) => t >= from && t <= to);
+  const d = inside.slice(1).map((t, i) => t - inside[i]).sort((a, b) => a - b);
+  if (!d.length) return 'no frames';
+  const q = (p: number) => d[Math.min(d.length - 1, Math.floor(p * d.length))].toFixed(0);
+  const over = d.filter((x) => x > 100).length;
+  return `${d.length} frames, median ${q(0.5)} ms, p95 ${q(0.95)} ms, max ${d[d.length - 1].toFixed(0)} ms, ${over} over 100 ms`;
+}
+
+async function main(argv: string[]): Promise<void> {
+  const triangles = Number(option(argv, 'triangles', '1000000'));
+  const seconds = Number(option(argv, 'seconds', '15'));
+  const ply = Buffer.from(bumpySpherePly(triangles));
+  const file = join(mkdtempSync(join(tmpdir(), 'mesh-frames-')), `sphere-${triangles}.ply`);
+  writeFileSync(file, ply);
+  const server = await serveDirectory(webRoot());
+  const browser = await launchChromium();
+  try {
+    const page = await browser.newPage({ viewport: { width: 1400, height: 1000 }, deviceScaleFactor: 1 });
+    await page.addInitScript({ content: 'globalThis.__name = (f) => f;' }); // tsx's keepNames helper
+    await page.addInitScript(recordFrames);
+    await page.goto(`${server.url}?maxwidth=512`);
+    await page.waitForFunction(() => Number(document.querySelector('[data-testid="spp"]')?.textContent) >= 2, undefined, { timeout: 120_000 });
+    const res = await page.locator('#resolution').textContent();
+    let t0 = await now(page);
+    await page.waitForTimeout(seconds * 1000);
+    console.log(`seed scene at ${res}: ${await gaps(page, t0, await now(page))}`);
+
+    // Paused while the model loads: the frame gaps are then the page's own
+    // work for the model (decode, fit, upload), not path tracing.
+    const paused = argv.includes('--paused');
+    if (paused) await page.click('#pause');
+    t0 = await now(page);
+    // From a file on disk: a buffer would be built into a File by script in the page, blocking it.
+    await page.setInputFiles('#file', file);
+    await page.waitForFunction(() => document.body.dataset.meshes === 'building', undefined, { timeout: 300_000 });
+    const t1 = await now(page);
+    console.log(`opening the ${(ply.length / 2 ** 20).toFixed(1)} MB PLY until its BVH build starts: ${((t1 - t0) / 1000).toFixed(1)} s; ${await gaps(page, t0, t1)}`);
+    await page.waitForFunction(() => document.body.dataset.meshes !== 'building', undefined, { timeout: 600_000 });
+    if ((await page.evaluate(() => document.body.dataset.meshes)) !== 'ready') throw new Error(`the BVH build failed: ${await page.getByTestId('error').textContent()}`);
+    const t2 = await now(page);
+    const buildMs = await page.evaluate(() => document.body.dataset.meshBuildMs);
+    console.log(`BVH build in the worker: ${((t2 - t1) / 1000).toFixed(1)} s (worker ${buildMs} ms); frames meanwhile: ${await gaps(page, t1, t2)}`);
+    if (paused) {
+      await page.waitForTimeout(2000); // the upload itself happens on the next frame
+      console.log(`(paused) frames from the upload on: ${await gaps(page, t2, await now(page))}`);
+      await page.click('#pause');
+    }
+    await page.waitForFunction(() => Number(document.querySelector('[data-testid="spp"]')?.textContent) >= 1, undefined, { timeout: 120_000 });
+    const t3 = await now(page);
+    console.log(`first sample of the mesh after upload: ${((t3 - t2) / 1000).toFixed(1)} s; ${await gaps(page, t2, t3)}`);
+    await page.waitForTimeout(seconds * 1000);
+    const t4 = await now(page);
+    const spp = await page.getByTestId('spp').textContent();
+    console.log(`rendering ${triangles} triangles at ${await page.locator('#resolution').textContent()}: ${await gaps(page, t3, t4)}; ${spp} spp`);
+  } finally {
+    await browser.close();
+    await server.close();
+  }
+}
+
+main(process.argv.slice(2)).catch((error) => {
+  console.error(error);
+  process.exit(1);
+});

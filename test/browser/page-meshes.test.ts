@@ -1,0 +1,125 @@
+/**
+ * Meshes on the page, end to end in headless Chromium: a model file opened
+ * is added as a fitted mesh and framed; a click at the image centre selects
+ * it; a drag moves it over its ground plane; the panel edits its material;
+ * Delete removes it and Ctrl+Z brings it back; a corrupt model changes
+ * nothing and names `meshes[i].file`; the bundled bunny example renders.
+ */
+import { readFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import type { Page } from 'playwright-core';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { decodeMesh } from '../../src/scene/mesh';
+import { meshBounds } from '../../src/scene/picking';
+import { canvasPixels, canvasPoint, drag, meanAbsDifference, openHarness, openPage, savedScene, spp, waitForSpp, type PageHarness } from '../support/page';
+
+const ICO = fileURLToPath(new URL('../fixtures/meshes/ico-smooth.obj', import.meta.url));
+
+type SavedMesh = { file: string; position: number[]; rotation: number[]; scale: number | number[]; material: Record<string, unknown> };
+const meshesOf = async (page: Page) => ((await savedScene(page)).meshes ?? []) as SavedMesh[];
+const selectionTitle = (page: Page) => page.locator('.lil-root > .lil-children > .lil-gui > .lil-title').first().textContent();
+
+let harness: PageHarness;
+beforeAll(async () => {
+  harness = await openHarness();
+});
+afterAll(async () => {
+  await harness?.browser.close();
+  await harness?.server.close();
+});
+
+describe('meshes on the page', () => {
+  it('adds, picks, moves, edits, deletes and restores a model; rejects a corrupt one', async () => {
+    const { page, errors } = await openPage(harness, { minSpp: 2 });
+    const before = await savedScene(page);
+    const pixelsBefore = await canvasPixels(page);
+
+    await page.setInputFiles('#file', ICO);
+    await page.waitForFunction(() => /Selected mesh 1/.test(document.querySelector('.lil-root .lil-title + .lil-children')?.parentElement?.textContent ?? ''));
+    let meshes = await meshesOf(page);
+    expect(meshes).toHaveLength(1);
+    expect(meshes[0].file).toBe('ico-smooth.obj');
+    const saved = await savedScene(page);
+    expect(saved.version).toBe(2);
+    // Fitted: the unit icosphere (radius 1) stands on the ground (y = 0 in the seed scene) under the old target.
+    const scale = Array.isArray(meshes[0].scale) ? meshes[0].scale[0] : meshes[0].scale;
+    const { min } = meshBounds(await decodeMesh(new Uint8Array(readFileSync(ICO)), 'ico-smooth.obj'));
+    expect(meshes[0].rotation).toEqual([0, 0, 0]);
+    expect(meshes[0].position[1]).toBeCloseTo(-scale * min[1], 4);
+    expect(saved.camera).not.toEqual(before.camera);
+    // The BVH is built in the worker, then the scene with the mesh is uploaded.
+    await page.waitForFunction(() => document.body.dataset.meshes === 'ready');
+    await waitForSpp(page, 2);
+    expect(meanAbsDifference((await canvasPixels(page)).rgba, pixelsBefore.rgba)).toBeGreaterThan(2);
+
+    // Deselect, then a click at the centre of the framed view picks the mesh.
+    await page.keyboard.press('Escape');
+    expect(await selectionTitle(page)).not.toMatch(/mesh/);
+    const centre = await canvasPoint(page, 0.5, 0.5);
+    await page.mouse.click(centre.x, centre.y);
+    expect(await selectionTitle(page)).toMatch(/Selected mesh 1/);
+
+    // Drag it sideways: it moves over the horizontal plane (x changes, y does not).
+    await drag(page, centre, 40, 0);
+    meshes = await meshesOf(page);
+    expect(Math.abs(meshes[0].position[0])).toBeGreaterThan(0.05);
+    await page.waitForFunction(() => document.body.dataset.meshes === 'ready');
+    expect(meshes[0].position[1]).toBeCloseTo(-scale * min[1], 4);
+
+    // The material through the panel.
+    const roughness = page.locator('.lil-controller').filter({ has: page.locator('.lil-name', { hasText: /^roughness$/ }) }).first().locator('input').first();
+    await roughness.fill('0.2');
+    await roughness.press('Enter');
+    await roughness.blur();
+    expect((await meshesOf(page))[0].material.roughness).toBeCloseTo(0.2, 5);
+
+    // Delete, then undo. The mesh is really drawn: the image without it differs.
+    await page.waitForFunction(() => document.body.dataset.meshes === 'ready');
+    await waitForSpp(page, 2);
+    await page.keyboard.press('Escape'); // no selection outline in the screenshots
+    const withMesh = await canvasPixels(page);
+    await page.mouse.click(centre.x + 40, centre.y);
+    const counted = await spp(page);
+    await page.keyboard.press('Delete');
+    expect(await meshesOf(page)).toHaveLength(0);
+    await page.waitForFunction((n) => Number(document.querySelector('[data-testid="spp"]')?.textContent) < n, counted); // restarted
+    await waitForSpp(page, 2);
+    expect(meanAbsDifference((await canvasPixels(page)).rgba, withMesh.rgba)).toBeGreaterThan(2);
+    await page.keyboard.press('Control+z');
+    expect(await meshesOf(page)).toHaveLength(1);
+
+    // A corrupt model: an error naming meshes[1].file, and nothing changes.
+    const unchanged = await savedScene(page);
+    const sppBefore = await spp(page);
+    await page.setInputFiles('#file', { name: 'broken.ply', mimeType: 'application/octet-stream', buffer: Buffer.from('ply\nformat ascii 1.0\nelement vertex 3\nend_header\n1 2\n') });
+    const alert = page.getByTestId('error');
+    await alert.waitFor({ state: 'visible' });
+    expect(await alert.textContent()).toMatch(/meshes\[1\]\.file: "broken\.ply"/);
+    expect(await savedScene(page)).toEqual(unchanged);
+    expect(await spp(page)).toBeGreaterThanOrEqual(sppBefore); // accumulation was not restarted
+    expect(errors).toEqual([]);
+    await page.close();
+  }, 180_000);
+
+  it('opens the bundled bunny example, adds a model to it, and both come back after a reload', async () => {
+    const { page, errors } = await openPage(harness, { minSpp: 1 });
+    const pixelsBefore = await canvasPixels(page);
+    await page.selectOption('#examples', 'bunny (model)');
+    await expect.poll(async () => (await meshesOf(page)).map((m) => m.file), { timeout: 30_000 }).toEqual(['bunny.ply']);
+    await page.waitForFunction(() => document.body.dataset.meshes === 'ready');
+    await waitForSpp(page, 2);
+    expect(meanAbsDifference((await canvasPixels(page)).rgba, pixelsBefore.rgba)).toBeGreaterThan(2);
+    await page.setInputFiles('#file', ICO);
+    await expect.poll(async () => (await meshesOf(page)).map((m) => m.file), { timeout: 30_000 }).toEqual(['bunny.ply', 'ico-smooth.obj']);
+    const scene = await savedScene(page);
+    await page.waitForTimeout(1500); // the model file is kept first (IndexedDB), then the scene saved
+    await page.waitForFunction(() => document.body.dataset.saved === 'saved');
+    await page.reload();
+    await waitForSpp(page, 1);
+    expect(await savedScene(page)).toEqual(scene);
+    await page.waitForFunction(() => document.body.dataset.meshes === 'ready');
+    expect(await page.getByTestId('error').isHidden()).toBe(true);
+    expect(errors).toEqual([]);
+    await page.close();
+  }, 120_000);
+});
