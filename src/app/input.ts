@@ -34,6 +34,9 @@ export function attachInput(app: App, canvas: HTMLCanvasElement): void {
   canvas.addEventListener('contextmenu', (event) => event.preventDefault());
 
   canvas.addEventListener('pointerdown', (event) => {
+    // A new gesture closes any edit still open (a panel field whose finishing
+    // event has not come), so the gesture is an undo step of its own.
+    if (pointers.size === 0) app.endEdit();
     canvas.setPointerCapture(event.pointerId);
     pointers.set(event.pointerId, { x: event.clientX, y: event.clientY, startX: event.clientX, startY: event.clientY });
     if (pointers.size === 2) {
