@@ -210,6 +210,7 @@ function benchMitsuba(
     const stdout = execFileSync('python3', [script, xml, '--out', out, '--time', String(t), '--seed', String(seed)], {
       encoding: 'utf8',
       stdio: ['ignore', 'pipe', 'inherit'],
+      maxBuffer: 64 * 1024 * 1024,
     });
     // The last line is the JSON summary; Mitsuba's own warnings (coloured) may share its start.
     const last = stdout.trim().split('\n').pop()!;

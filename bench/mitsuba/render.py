@@ -119,6 +119,9 @@ def main(argv):
     import mitsuba as mi
 
     mi.set_variant(args.variant)
+    # Negative samples (an environment map's negative texels) are legitimate
+    # here; Mitsuba warns about each one, which would flood the output.
+    mi.set_log_level(mi.LogLevel.Error)
     if args.threads > 0:
         dr.set_thread_count(args.threads)
     threads = dr.thread_count()

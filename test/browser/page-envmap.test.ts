@@ -13,33 +13,11 @@ import type { MapTimings } from '../../src/app/mapDecoder';
 import { sceneFromHash, shareHash } from '../../src/app/files';
 import { defaultScene } from '../../src/scene/presets';
 import type { Scene } from '../../src/scene/types';
-import { openHarness, openPage, savedScene, spp, waitForSpp, watchSppMinimum, type PageHarness } from '../support/page';
+import { openPage, savedScene, spp, waitForSpp, watchSppMinimum, usePageHarness, instrument, probe } from '../support/page';
 import { encodeFlatHdr } from '../support/rgbe';
 
 const fixture = (path: string) => readFileSync(new URL(`../fixtures/${path}`, import.meta.url));
 
-interface Probe {
-  links: number;
-  frames: number[];
-}
-
-/** Counts program links and records animation-frame times (to see a freeze). */
-function instrument(): void {
-  const probe = { links: 0, frames: [] as number[] };
-  (window as unknown as { __probe: Probe }).__probe = probe;
-  const link = WebGL2RenderingContext.prototype.linkProgram;
-  WebGL2RenderingContext.prototype.linkProgram = function (this: WebGL2RenderingContext, program: WebGLProgram) {
-    probe.links += 1;
-    return link.call(this, program);
-  };
-  const tick = (time: number) => {
-    probe.frames.push(time);
-    requestAnimationFrame(tick);
-  };
-  requestAnimationFrame(tick);
-}
-
-const probe = (page: Page) => page.evaluate(() => (window as unknown as { __probe: Probe }).__probe);
 const now = (page: Page) => page.evaluate(() => performance.now());
 
 async function longestFrameGap(page: Page, since: number): Promise<number> {
@@ -82,17 +60,10 @@ async function waitForMap(page: Page, name: string): Promise<MapTimings> {
 const environmentOf = async (page: Page) => (await savedScene(page)).environment as Record<string, unknown> | undefined;
 
 describe('environment maps on the page', () => {
-  let harness: PageHarness;
-  beforeAll(async () => {
-    harness = await openHarness();
-  });
-  afterAll(async () => {
-    await harness?.browser.close();
-    await harness?.server.close();
-  });
+  const harness = usePageHarness();
 
   it('bundled maps: picker, intensity and rotation without a new program, a share link that carries the map', async () => {
-    const { page, errors } = await openPage(harness, { initScript: instrument });
+    const { page, errors } = await openPage(harness(), { initScript: instrument });
     await openFolder(page);
     const note = page.getByTestId('map-note');
     expect(await note.textContent()).toMatch(/link cannot carry/);
@@ -143,7 +114,7 @@ describe('environment maps on the page', () => {
   });
 
   it("a user's map: opened, rejected when broken (nothing changes), dropped, a 2k map off the main thread", async () => {
-    const { page, errors } = await openPage(harness, { initScript: instrument });
+    const { page, errors } = await openPage(harness(), { initScript: instrument });
     await page.setInputFiles('#file', { name: 'gradient.hdr', mimeType: 'application/octet-stream', buffer: fixture('envmaps/gradient-rle.hdr') });
     await waitForMap(page, 'gradient.hdr');
     expect(await environmentOf(page)).toEqual({ map: 'gradient.hdr', intensity: 1, rotation: 0 });

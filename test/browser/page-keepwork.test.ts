@@ -20,13 +20,12 @@ import {
   canvasPoint,
   drag,
   meanAbsDifference,
-  openHarness,
   openPage,
   savedScene,
   spp,
   waitForSpp,
   watchSppMinimum,
-  type PageHarness,
+  usePageHarness,
 } from '../support/page';
 
 const fixtureBytes = (path: string) => readFileSync(new URL(`../fixtures/${path}`, import.meta.url));
@@ -56,18 +55,11 @@ async function setControl(page: Page, label: string, value: string): Promise<voi
 }
 
 describe('the page keeps the work', () => {
-  let harness: PageHarness;
-  beforeAll(async () => {
-    harness = await openHarness();
-  });
-  afterAll(async () => {
-    await harness?.browser.close();
-    await harness?.server.close();
-  });
+  const harness = usePageHarness();
 
   it('a rejected scene file changes nothing: scene, selection, undo, render size, samples', async () => {
     // No render-width cap and a short window: the render size follows the layout's height, as for a user.
-    const { page, errors } = await openPage(harness, { viewport: { width: 1000, height: 420 }, maxWidth: 100_000, minSpp: 3 });
+    const { page, errors } = await openPage(harness(), { viewport: { width: 1000, height: 420 }, maxWidth: 100_000, minSpp: 3 });
     await page.click('#add-sphere'); // an undo step and a selection
     await waitForSpp(page, 3);
     const scene = await savedScene(page);
@@ -111,7 +103,7 @@ describe('the page keeps the work', () => {
   ];
   for (const [what, sceneName, files, issue] of assetFailures) {
     it(`a scene with ${what} is rejected and changes nothing`, async () => {
-      const { page, errors } = await openPage(harness, { minSpp: 3 });
+      const { page, errors } = await openPage(harness(), { minSpp: 3 });
       await page.click('#add-sphere');
       const scene = await savedScene(page);
       const before = await spp(page);
@@ -132,7 +124,7 @@ describe('the page keeps the work', () => {
   }
 
   it('opens a scene with its map, keeps the map with the autosave, and reopens both after a reload', async () => {
-    const { page, errors } = await openPage(harness);
+    const { page, errors } = await openPage(harness());
     const envmap = serializeScene(parseSceneText(fixtureText('envmap')));
     await page.setInputFiles('#file', [
       { name: 'envmap.json', mimeType: 'application/json', buffer: Buffer.from(fixtureText('envmap')) },
@@ -155,7 +147,7 @@ describe('the page keeps the work', () => {
   });
 
   it('brings back the scene, camera, view settings and undo history after a reload', async () => {
-    const { page, errors } = await openPage(harness);
+    const { page, errors } = await openPage(harness());
     await page.click('#add-sphere');
     await setControl(page, 'color', '#20c040'); // the new (selected) sphere's colour
     await setControl(page, 'exposure (stops)', '1.5');
@@ -193,7 +185,7 @@ describe('the page keeps the work', () => {
   ];
   for (const [what, record] of corrupt) {
     it(`discards a saved state with ${what}: a notice and the example scene`, async () => {
-      const { page, errors } = await openPage(harness);
+      const { page, errors } = await openPage(harness());
       await page.selectOption('#examples', 'mirrors');
       await waitSaved(page);
       await writeSavedRecord(page, record());
@@ -210,12 +202,12 @@ describe('the page keeps the work', () => {
   }
 
   it('a share link opens its scene; the saved scene is one Undo away, and reloading the link keeps edits', async () => {
-    const { page, errors } = await openPage(harness);
+    const { page, errors } = await openPage(harness());
     await page.click('#add-sphere');
     const mine = await savedScene(page);
     await waitSaved(page);
     const glossy = serializeScene(parseSceneText(fixtureText('glossy')));
-    const link = `${harness.server.url}?maxwidth=161${shareHash(parseSceneText(fixtureText('glossy')))}`;
+    const link = `${harness().server.url}?maxwidth=161${shareHash(parseSceneText(fixtureText('glossy')))}`;
     await page.goto(link);
     await waitForSpp(page, 2);
     expect(await savedScene(page)).toEqual(glossy);
@@ -237,7 +229,7 @@ describe('the page keeps the work', () => {
   });
 
   it('"New scene" opens the example and Undo brings the work back', async () => {
-    const { page, errors } = await openPage(harness);
+    const { page, errors } = await openPage(harness());
     await page.selectOption('#examples', 'small-light');
     await page.click('#add-sphere');
     const work = await savedScene(page);
@@ -250,7 +242,7 @@ describe('the page keeps the work', () => {
   });
 
   it('leaving a saved page does not ask', async () => {
-    const { page } = await openPage(harness);
+    const { page } = await openPage(harness());
     await page.click('#add-sphere');
     await waitSaved(page);
     const asked = await page.evaluate(() => {
@@ -263,13 +255,13 @@ describe('the page keeps the work', () => {
   });
 
   it('when nothing can be saved: says so, keeps rendering, and asks before the page is left', async () => {
-    const page = await harness.browser.newPage({ viewport: { width: 960, height: 600 } });
+    const page = await harness().browser.newPage({ viewport: { width: 960, height: 600 } });
     await page.addInitScript(() => {
       indexedDB.open = () => {
         throw new DOMException('storage is disabled', 'SecurityError');
       };
     });
-    await page.goto(`${harness.server.url}?maxwidth=160`);
+    await page.goto(`${harness().server.url}?maxwidth=160`);
     await waitForSpp(page, 2);
     await page.click('#add-sphere');
     await page.waitForFunction(() => document.body.dataset.saved === 'failed');
@@ -287,7 +279,7 @@ describe('the page keeps the work', () => {
   });
 
   it('a lost and restored WebGL context resumes from the last snapshot of the samples', async () => {
-    const { page, errors } = await openPage(harness, { minSpp: 4 });
+    const { page, errors } = await openPage(harness(), { minSpp: 4 });
     const loseContext = () =>
       page.getByTestId('viewport').evaluate((canvas: HTMLCanvasElement) => {
         canvas.getContext('webgl2')!.getExtension('WEBGL_lose_context')!.loseContext();

@@ -12,33 +12,11 @@ import { projectPoint } from '../../src/scene/picking';
 import { defaultScene, PRESETS } from '../../src/scene/presets';
 import { parseScene } from '../../src/scene/schema';
 import { serializeScene } from '../../src/scene/serialize';
-import { canvasPoint, drag, openHarness, openPage, savedScene, spp, waitForSpp, type PageHarness } from '../support/page';
+import { canvasPoint, drag, openPage, savedScene, spp, waitForSpp, usePageHarness, instrument, probe } from '../support/page';
 
 const seed = defaultScene();
 const seedJson = serializeScene(seed);
 
-interface Probe {
-  links: number;
-  frames: number[];
-}
-
-/** Counts program links and records animation-frame times (to see a freeze). */
-function instrument(): void {
-  const probe = { links: 0, frames: [] as number[] };
-  (window as unknown as { __probe: Probe }).__probe = probe;
-  const link = WebGL2RenderingContext.prototype.linkProgram;
-  WebGL2RenderingContext.prototype.linkProgram = function (this: WebGL2RenderingContext, program: WebGLProgram) {
-    probe.links += 1;
-    return link.call(this, program);
-  };
-  const tick = (time: number) => {
-    probe.frames.push(time);
-    requestAnimationFrame(tick);
-  };
-  requestAnimationFrame(tick);
-}
-
-const probe = (page: Page) => page.evaluate(() => (window as unknown as { __probe: Probe }).__probe);
 
 /** The longest gap between animation frames since `since` (ms, page clock). */
 async function longestFrameGap(page: Page, since: number): Promise<number> {
@@ -98,17 +76,10 @@ async function selectSphere(page: Page, index: number): Promise<void> {
 }
 
 describe('the page edits version-2 materials', () => {
-  let harness: PageHarness;
-  beforeAll(async () => {
-    harness = await openHarness();
-  });
-  afterAll(async () => {
-    await harness?.browser.close();
-    await harness?.server.close();
-  });
+  const harness = usePageHarness();
 
   it('switches a sphere to glass, sets ior and emission, saves version 2; undo restores the standard material', async () => {
-    const { page, errors } = await openPage(harness, { initScript: instrument });
+    const { page, errors } = await openPage(harness(), { initScript: instrument });
     await selectSphere(page, 0);
     expect(await labels(page)).toEqual(['material', 'color', 'roughness', 'emission color', 'emission intensity', 'radius', 'Delete']);
     const linksBefore = (await probe(page)).links;
@@ -184,7 +155,7 @@ describe('the page edits version-2 materials', () => {
   });
 
   it('switching back to standard brings back the sphere\'s color and roughness; the scene is version 1 again', async () => {
-    const { page, errors } = await openPage(harness);
+    const { page, errors } = await openPage(harness());
     await selectSphere(page, 3);
     await switchType(page, 'dielectric');
     await control(page, 'ior').waitFor();
@@ -201,7 +172,7 @@ describe('the page edits version-2 materials', () => {
   });
 
   it('shares a scene with glass and emission: the link opens the same version-2 scene', async () => {
-    const { page, errors } = await openPage(harness);
+    const { page, errors } = await openPage(harness());
     await selectSphere(page, 2);
     await switchType(page, 'dielectric');
     await control(page, 'ior').waitFor();
@@ -213,7 +184,7 @@ describe('the page edits version-2 materials', () => {
     expect((shared.spheres as SavedSphere[])[2].material).toEqual({
       type: 'dielectric', color: [1, 1, 1], roughness: 0, ior: 1.5, emission: { color: [1, 1, 1], intensity: 3 },
     });
-    const opened = await openPage(harness, { url: page.url() });
+    const opened = await openPage(harness(), { url: page.url() });
     expect(await savedScene(opened.page)).toEqual(shared);
     expect(await opened.page.getByTestId('error').isHidden()).toBe(true);
     expect([...errors, ...opened.errors]).toEqual([]);
@@ -221,7 +192,7 @@ describe('the page edits version-2 materials', () => {
   });
 
   it('lists and loads the glass and emissive examples; the panel follows the loaded materials', async () => {
-    const { page, errors } = await openPage(harness);
+    const { page, errors } = await openPage(harness());
     const names = await page.locator('#examples option').allTextContents();
     expect(names).toEqual(expect.arrayContaining(['glass', 'emissive']));
     await selectSphere(page, 0);

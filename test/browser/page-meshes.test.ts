@@ -11,7 +11,7 @@ import type { Page } from 'playwright-core';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { decodeMesh } from '../../src/scene/mesh';
 import { meshBounds } from '../../src/scene/picking';
-import { canvasPixels, canvasPoint, drag, meanAbsDifference, openHarness, openPage, savedScene, spp, waitForSpp, type PageHarness } from '../support/page';
+import { canvasPixels, canvasPoint, drag, meanAbsDifference, openPage, savedScene, spp, waitForSpp, usePageHarness } from '../support/page';
 
 const ICO = fileURLToPath(new URL('../fixtures/meshes/ico-smooth.obj', import.meta.url));
 
@@ -19,18 +19,11 @@ type SavedMesh = { file: string; position: number[]; rotation: number[]; scale: 
 const meshesOf = async (page: Page) => ((await savedScene(page)).meshes ?? []) as SavedMesh[];
 const selectionTitle = (page: Page) => page.locator('.lil-root > .lil-children > .lil-gui > .lil-title').first().textContent();
 
-let harness: PageHarness;
-beforeAll(async () => {
-  harness = await openHarness();
-});
-afterAll(async () => {
-  await harness?.browser.close();
-  await harness?.server.close();
-});
+const harness = usePageHarness();
 
 describe('meshes on the page', () => {
   it('adds, picks, moves, edits, deletes and restores a model; rejects a corrupt one', async () => {
-    const { page, errors } = await openPage(harness, { minSpp: 2 });
+    const { page, errors } = await openPage(harness(), { minSpp: 2 });
     const before = await savedScene(page);
     const pixelsBefore = await canvasPixels(page);
 
@@ -102,7 +95,7 @@ describe('meshes on the page', () => {
   }, 180_000);
 
   it('opens the bundled bunny example, adds a model to it, and both come back after a reload', async () => {
-    const { page, errors } = await openPage(harness, { minSpp: 1 });
+    const { page, errors } = await openPage(harness(), { minSpp: 1 });
     const pixelsBefore = await canvasPixels(page);
     await page.selectOption('#examples', 'bunny (model)');
     await expect.poll(async () => (await meshesOf(page)).map((m) => m.file), { timeout: 30_000 }).toEqual(['bunny.ply']);

@@ -18,13 +18,12 @@ import {
   download,
   drag,
   meanAbsDifference,
-  openHarness,
   openPage,
   savedScene,
   spp,
   waitForSpp,
   watchSppMinimum,
-  type PageHarness,
+  usePageHarness,
 } from '../support/page';
 
 const fixture = (name: string) => readFileSync(new URL(`../fixtures/scenes/${name}.json`, import.meta.url));
@@ -32,17 +31,10 @@ const seed = defaultScene();
 const seedAspect = seed.image.width / seed.image.height;
 
 describe('the page', () => {
-  let harness: PageHarness;
-  beforeAll(async () => {
-    harness = await openHarness();
-  });
-  afterAll(async () => {
-    await harness?.browser.close();
-    await harness?.server.close();
-  });
+  const harness = usePageHarness();
 
   it('loads without console errors, renders a non-blank image and the spp count rises', async () => {
-    const { page, errors } = await openPage(harness);
+    const { page, errors } = await openPage(harness());
     expect(await page.evaluate(() => document.body.dataset.state)).toBe('ready');
     const first = await spp(page);
     await waitForSpp(page, first + 3);
@@ -61,7 +53,7 @@ describe('the page', () => {
   });
 
   it('orbits on drag and zooms on wheel: the image changes and accumulation restarts', async () => {
-    const { page, errors } = await openPage(harness, { minSpp: 6 });
+    const { page, errors } = await openPage(harness(), { minSpp: 6 });
     for (const gesture of ['drag', 'wheel'] as const) {
       await waitForSpp(page, 6);
       const before = await canvasPixels(page);
@@ -86,7 +78,7 @@ describe('the page', () => {
   });
 
   it('selects a sphere by clicking it, drags it over the ground, and undo puts it back', async () => {
-    const { page, errors } = await openPage(harness);
+    const { page, errors } = await openPage(harness());
     const red = seed.spheres[0];
     const p = projectPoint(seed.camera, seedAspect, red.center)!;
     const at = await canvasPoint(page, p.u, p.v);
@@ -110,7 +102,7 @@ describe('the page', () => {
   });
 
   it('rejects a bad scene file with an alert naming the field, keeps rendering; a good file replaces the scene', async () => {
-    const { page, errors } = await openPage(harness);
+    const { page, errors } = await openPage(harness());
     const bad = JSON.parse(fixture('seed').toString('utf8'));
     bad.spheres[2].radius = -1;
     bad.camera.fov = 'wide';
@@ -134,7 +126,7 @@ describe('the page', () => {
   });
 
   it('round-trips a share link: the scene opened from the link is the scene shared', async () => {
-    const { page, errors } = await openPage(harness);
+    const { page, errors } = await openPage(harness());
     await page.selectOption('#examples', 'mirrors');
     const center = await canvasPoint(page, 0.5, 0.5);
     await page.mouse.move(center.x, center.y);
@@ -143,12 +135,12 @@ describe('the page', () => {
     await page.waitForFunction(() => location.hash.startsWith('#scene='));
     const shared = await savedScene(page);
     const link = page.url();
-    const opened = await openPage(harness, { url: link });
+    const opened = await openPage(harness(), { url: link });
     expect(await savedScene(opened.page)).toEqual(shared);
     expect(await opened.page.getByTestId('error').isHidden()).toBe(true);
 
     // A damaged link: an alert, and the default scene instead.
-    const broken = await openPage(harness, { url: link.replace(/#scene=.*/, '#scene=not-a-scene') });
+    const broken = await openPage(harness(), { url: link.replace(/#scene=.*/, '#scene=not-a-scene') });
     await broken.page.getByTestId('error').waitFor({ state: 'visible' });
     expect(await savedScene(broken.page)).toEqual(serializeScene(seed));
     expect([...errors, ...opened.errors, ...broken.errors]).toEqual([]);
@@ -156,7 +148,7 @@ describe('the page', () => {
   });
 
   it('downloads the displayed image as PNG and the linear image as PFM, at the render size', async () => {
-    const { page, errors } = await openPage(harness, { minSpp: 4 });
+    const { page, errors } = await openPage(harness(), { minSpp: 4 });
     await page.click('#pause'); // a fixed sample count while reading back
     const size = await page.getByTestId('viewport').evaluate((c: HTMLCanvasElement) => ({ width: c.width, height: c.height }));
     expect(size.width).toBe(160);
@@ -184,7 +176,7 @@ describe('the page', () => {
   });
 
   it('restores a lost WebGL context by itself and the spp count rises again', async () => {
-    const { page } = await openPage(harness, { minSpp: 4 });
+    const { page } = await openPage(harness(), { minSpp: 4 });
     const minimum = await watchSppMinimum(page);
     await page.getByTestId('viewport').evaluate((canvas: HTMLCanvasElement) => {
       canvas.getContext('webgl2')!.getExtension('WEBGL_lose_context')!.loseContext();
@@ -198,7 +190,7 @@ describe('the page', () => {
   });
 
   it('opens a scene dropped on the page', async () => {
-    const { page, errors } = await openPage(harness);
+    const { page, errors } = await openPage(harness());
     const text = fixture('small-light').toString('utf8');
     const dataTransfer = await page.evaluateHandle((json) => {
       const transfer = new DataTransfer();
@@ -212,14 +204,14 @@ describe('the page', () => {
   });
 
   it('without WebGL2 shows a clear message instead of a blank canvas', async () => {
-    const page = await harness.browser.newPage({ viewport: { width: 800, height: 600 } });
+    const page = await harness().browser.newPage({ viewport: { width: 800, height: 600 } });
     await page.addInitScript(() => {
       const original = HTMLCanvasElement.prototype.getContext;
       HTMLCanvasElement.prototype.getContext = function (this: HTMLCanvasElement, type: string, ...rest: unknown[]) {
         return type === 'webgl2' ? null : (original as (...a: unknown[]) => unknown).call(this, type, ...rest);
       } as typeof original;
     });
-    await page.goto(`${harness.server.url}?maxwidth=160`);
+    await page.goto(`${harness().server.url}?maxwidth=160`);
     const alert = page.getByTestId('error');
     await alert.waitFor({ state: 'visible' });
     expect(await alert.textContent()).toContain('WebGL2 is not available');

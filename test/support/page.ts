@@ -5,7 +5,7 @@
  */
 import { readFileSync } from 'node:fs';
 import type { Browser, Page } from 'playwright-core';
-import { expect } from 'vitest';
+import { afterAll, beforeAll, expect } from 'vitest';
 import { decodePng } from '../../src/cli/png';
 import { launchChromium } from '../../src/node/session';
 import { serveDirectory, type StaticServer } from '../../src/node/server';
@@ -21,6 +21,22 @@ export async function openHarness(): Promise<PageHarness> {
   const server = await serveDirectory(WEB_ROOT.pathname);
   const browser = await launchChromium();
   return { browser, server };
+}
+
+/** One browser and server per test file, closed after it: call at the top of a describe (or file). */
+export function usePageHarness(): () => PageHarness {
+  let harness: PageHarness | undefined;
+  beforeAll(async () => {
+    harness = await openHarness();
+  });
+  afterAll(async () => {
+    await harness?.browser.close();
+    await harness?.server.close();
+  });
+  return () => {
+    if (!harness) throw new Error('the page harness failed to open');
+    return harness;
+  };
 }
 
 export interface OpenedPage {
@@ -117,3 +133,29 @@ export async function drag(page: Page, from: { x: number; y: number }, dx: numbe
   await page.mouse.up();
   if (shift) await page.keyboard.up('Shift');
 }
+
+export interface Probe {
+  links: number;
+  frames: number[];
+}
+
+/**
+ * Counts program links and records animation-frame times (to see a freeze):
+ * pass to openPage's initScript, read with probe(page).
+ */
+export function instrument(): void {
+  const probe = { links: 0, frames: [] as number[] };
+  (window as unknown as { __probe: Probe }).__probe = probe;
+  const link = WebGL2RenderingContext.prototype.linkProgram;
+  WebGL2RenderingContext.prototype.linkProgram = function (this: WebGL2RenderingContext, program: WebGLProgram) {
+    probe.links += 1;
+    return link.call(this, program);
+  };
+  const tick = (time: number) => {
+    probe.frames.push(time);
+    requestAnimationFrame(tick);
+  };
+  requestAnimationFrame(tick);
+}
+
+export const probe = (page: Page) => page.evaluate(() => (window as unknown as { __probe: Probe }).__probe);
