@@ -9,34 +9,13 @@ import { createRequire } from 'node:module';
 import { buildBvh, type BvhMeshInput } from '../src/render/bvh/build';
 import { packBvh } from '../src/render/bvh/pack';
 import { decodeMesh } from '../src/scene/mesh';
+import { bumpySphere as bumpySphereMesh } from './meshGen';
 
 const gc = (globalThis as { gc?: () => void }).gc ?? (() => {});
 const mb = (bytes: number) => `${(bytes / 2 ** 20).toFixed(1)} MB`;
 
-/** A latitude-longitude sphere with bumps: rows * cols * 2 triangles of uneven sizes (poles are dense). */
-function bumpySphere(triangles: number): BvhMeshInput {
-  const rows = Math.round(Math.sqrt(triangles / 4));
-  const cols = Math.round(triangles / (2 * rows));
-  const positions = new Float32Array((rows + 1) * (cols + 1) * 3);
-  for (let i = 0; i <= rows; i++) {
-    for (let j = 0; j <= cols; j++) {
-      const theta = (Math.PI * i) / rows;
-      const phi = (2 * Math.PI * j) / cols;
-      const r = 1 + 0.05 * Math.sin(13 * theta) * Math.cos(17 * phi);
-      positions.set([r * Math.sin(theta) * Math.cos(phi), r * Math.cos(theta), r * Math.sin(theta) * Math.sin(phi)], (i * (cols + 1) + j) * 3);
-    }
-  }
-  const indices = new Uint32Array(rows * cols * 6);
-  let o = 0;
-  for (let i = 0; i < rows; i++) {
-    for (let j = 0; j < cols; j++) {
-      const a = i * (cols + 1) + j;
-      indices.set([a, a + cols + 1, a + 1, a + 1, a + cols + 1, a + cols + 2], o);
-      o += 6;
-    }
-  }
-  return { positions, normals: positions.slice(), indices, material: 0 };
-}
+/** The bumpy sphere of bench/meshGen.ts (the mesh benchmarks share it), carrying material 0. */
+const bumpySphere = (triangles: number): BvhMeshInput => ({ ...bumpySphereMesh(triangles), material: 0 });
 
 function measure(name: string, meshes: BvhMeshInput[]): void {
   gc();
