@@ -4,6 +4,7 @@
  * sRGB), so a denoised PNG is displayed exactly like a plain one.
  */
 import { createContext } from '../render/gl/context';
+import { flipRows } from '../render/gl/rows';
 import { FloatTarget } from '../render/gl/targets';
 import { DisplayPass, type DisplayOptions } from '../render/passes/display';
 
@@ -17,29 +18,11 @@ export function displayLinear(linear: Float32Array, width: number, height: numbe
   try {
     gl.bindTexture(gl.TEXTURE_2D, source.texture);
     // GL rows run bottom to top.
-    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RGBA, gl.FLOAT, flipRows(linear, width, height));
-    const texture = gl.createTexture()!;
-    gl.bindTexture(gl.TEXTURE_2D, texture);
-    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA8, width, height);
-    const framebuffer = gl.createFramebuffer()!;
-    gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
-    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
-    display.draw(source, 1, options, framebuffer, width, height);
-    const pixels = new Uint8Array(width * height * 4);
-    gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
-    gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
-    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    return flipRows(pixels, width, height);
+    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RGBA, gl.FLOAT, flipRows(linear, width, height, 4));
+    return display.read(source, 1, options, width, height);
   } finally {
     display.dispose();
     source.dispose();
     gl.getExtension('WEBGL_lose_context')?.loseContext();
   }
-}
-
-function flipRows<T extends Float32Array | Uint8Array>(data: T, width: number, height: number): T {
-  const out = data.slice() as T;
-  const row = width * 4;
-  for (let y = 0; y < height; y++) out.set(data.subarray((height - 1 - y) * row, (height - y) * row), y * row);
-  return out;
 }

@@ -11,6 +11,7 @@
 import { NO_ASSETS, type SceneAssets } from '../scene/assets';
 import type { Scene } from '../scene/types';
 import { type AnyCanvas, createContext, rendererInfo, requireFloatTargets } from './gl/context';
+import { flipRows } from './gl/rows';
 import { PingPong } from './gl/targets';
 import { AovPass } from './passes/aov';
 import { DisplayPass, type DisplayOptions } from './passes/display';
@@ -242,22 +243,7 @@ export class PathTracer {
   /** The displayed image (exposure, tone map, sRGB) as RGBA8, rows from top to bottom. */
   readDisplayed(options: DisplayOptions = {}): Uint8Array {
     const r = this.requireResources();
-    const gl = this.gl;
-    const { width, height } = this.size;
-    const texture = gl.createTexture()!;
-    gl.bindTexture(gl.TEXTURE_2D, texture);
-    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA8, width, height);
-    const framebuffer = gl.createFramebuffer()!;
-    gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
-    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
-    r.display.draw(r.sums.read, this.samples, options, framebuffer, width, height);
-    const pixels = new Uint8Array(width * height * 4);
-    gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
-    gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
-    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    gl.deleteFramebuffer(framebuffer);
-    gl.deleteTexture(texture);
-    return flipRows(pixels, width, height, 4);
+    return r.display.read(r.sums.read, this.samples, options, this.size.width, this.size.height);
   }
 
   /** Blocks until the GPU has finished every queued draw (for timing). */
@@ -360,11 +346,4 @@ export class PathTracer {
     this.samples = 0;
     this.emit('contextrestored');
   };
-}
-
-function flipRows<T extends Float32Array | Uint8Array>(data: T, width: number, height: number, channels: number): T {
-  const out = new (data.constructor as { new (n: number): T })(data.length);
-  const row = width * channels;
-  for (let y = 0; y < height; y++) out.set(data.subarray((height - 1 - y) * row, (height - y) * row), y * row);
-  return out;
 }

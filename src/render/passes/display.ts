@@ -1,6 +1,7 @@
 /** The display pass: mean radiance -> exposure -> tone map -> sRGB. */
 import displayFrag from '../../shaders/display.frag?raw';
 import { Program } from '../gl/program';
+import { flipRows } from '../gl/rows';
 import type { FloatTarget } from '../gl/targets';
 import { TONEMAPS, toneMapDefines, type ToneMap } from '../toneMaps';
 import { VERTEX_CHUNKS } from '../shaderSources';
@@ -55,6 +56,25 @@ export class DisplayPass {
     gl.viewport(0, 0, width, height);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  }
+
+  /** Draws into a temporary RGBA8 target of the given size and reads it back: sRGB, rows top to bottom. */
+  read(sums: FloatTarget, sampleCount: number, options: DisplayOptions, width: number, height: number): Uint8Array {
+    const gl = this.gl;
+    const texture = gl.createTexture()!;
+    gl.bindTexture(gl.TEXTURE_2D, texture);
+    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA8, width, height);
+    const framebuffer = gl.createFramebuffer()!;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
+    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
+    this.draw(sums, sampleCount, options, framebuffer, width, height);
+    const pixels = new Uint8Array(width * height * 4);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
+    gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.deleteFramebuffer(framebuffer);
+    gl.deleteTexture(texture);
+    return flipRows(pixels, width, height, 4);
   }
 
   dispose(): void {
