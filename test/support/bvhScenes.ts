@@ -1,17 +1,8 @@
 /** Triangle soups and meshes for the BVH tests (Node and browser). */
 import type { BvhMeshInput } from '../../src/render/bvh/build';
+import { random } from './random';
 
-/** A deterministic PRNG (mulberry32), so failures reproduce. */
-export function random(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
+export { random } from './random';
 
 /** `count` random triangles (sizes from tiny to large) in [-extent, extent]^3, every one its own 3 vertices. */
 export function triangleSoup(count: number, seed: number, extent = 5, material = 0, smooth = false): BvhMeshInput {

@@ -15,19 +15,10 @@ import {
 import { directionToUv, lookupEnvironment, uvToDirection } from '../../src/scene/envmap/mapping';
 import type { EnvironmentImage } from '../../src/scene/types';
 import { chiSquareTest } from '../support/chi2';
+import { random as mulberry32 } from '../support/random';
 
 const ALPHA = 1e-4;
 
-function mulberry32(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
 
 function makeImage(width: number, height: number, f: (x: number, y: number) => number): EnvironmentImage {
   const rgb = new Float32Array(width * height * 3);
