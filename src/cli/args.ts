@@ -31,6 +31,14 @@ export interface RawRenderOptions {
   tonemap?: string;
   /** --denoise (commander gives true when present). */
   denoise?: boolean;
+  /** --aov ALBEDO.pfm,NORMAL.pfm */
+  aov?: string;
+}
+
+/** Where --aov writes the denoiser's guide buffers. */
+export interface AovPaths {
+  albedo: string;
+  normal: string;
 }
 
 /** How long to render: a fixed sample count, or a time budget. */
@@ -46,6 +54,8 @@ export interface RenderArgs {
   toneMap: string;
   /** Denoise the final image (PNG and --hdr); default false: the unbiased estimate. */
   denoise: boolean;
+  /** Also write the albedo and normal guides as PFM. */
+  aov?: AovPaths;
 }
 
 const INTEGER = /^\+?\d+$/;
@@ -114,8 +124,19 @@ export function parseRenderArgs(raw: RawRenderOptions, tonemaps: readonly string
   if (!tonemaps.includes(tonemap)) {
     problems.push(`--tonemap: must be one of ${tonemaps.join(', ')} ${got(tonemap)}`);
   }
+  const aov = raw.aov === undefined ? undefined : attempt(() => parseAovPaths(raw.aov!));
   if (problems.length > 0) throw usageError(problems);
-  return { budget: budget!, seed: seed!, width, height, exposure: exposure!, toneMap: tonemap, denoise: raw.denoise === true };
+  return { budget: budget!, seed: seed!, width, height, exposure: exposure!, toneMap: tonemap, denoise: raw.denoise === true, aov };
+}
+
+/** `albedo.pfm,normal.pfm`: exactly two different, non-empty paths, albedo first. */
+export function parseAovPaths(raw: string): AovPaths {
+  const parts = raw.split(',').map((part) => part.trim());
+  if (parts.length !== 2 || parts.some((part) => part === '')) {
+    throw usageError(`--aov: must be two PFM paths separated by a comma, albedo first: ALBEDO.pfm,NORMAL.pfm ${got(raw)}`);
+  }
+  if (parts[0] === parts[1]) throw usageError(`--aov: the albedo and normal files must differ ${got(raw)}`);
+  return { albedo: parts[0], normal: parts[1] };
 }
 
 function parseTime(raw: string): number {

@@ -67,6 +67,7 @@ function buildProgram(io: Required<Pick<RunOptions, 'stdout' | 'stderr'>>, optio
     .option('--exposure <ev>', 'exposure in stops: displayed = radiance * 2^ev (default: 0)')
     .option('--tonemap <name>', 'tone-mapping operator, e.g. none, aces (default: none)')
     .option('--denoise', "denoise the final image with Open Image Denoise's network: the PNG and --hdr are the denoised image")
+    .option('--aov <albedo.pfm,normal.pfm>', "also write the denoiser's guides as PFM: albedo (linear, [0,1]) and normal ([-1,1], zero for the sky)")
     .action(async (scene: string, raw: Record<string, string | undefined>) => {
       const session = await loadSession();
       await renderCommand(scene, raw, { session, stderr: io.stderr, cwd: options.cwd, now: options.now });

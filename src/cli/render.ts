@@ -8,11 +8,11 @@
 import { resolve } from 'node:path';
 import type { RenderSession, SessionOptions } from '../node/session';
 import type { Scene } from '../scene/types';
-import { parseRenderArgs, resolveSize, type Budget, type RawRenderOptions, type RenderArgs } from './args';
+import { parseRenderArgs, resolveSize, type AovPaths, type Budget, type RawRenderOptions, type RenderArgs } from './args';
 import { CliError, EXIT_INTERRUPTED, failure, firstLine, oneLine, usageError } from './errors';
 import { checkWritable, defaultPngPath, writeOutputs } from './output';
 import { encodePfm } from '../image/pfm';
-import { denoiseFinalImage, type DenoiseSession } from './denoise';
+import { denoiseFinalImage, readGuides, type DenoiseSession, type Guides } from './denoise';
 import { encodePng } from './png';
 import { createProgress, formatRate, type Progress, type ProgressStream } from './progress';
 import { loadSceneFile, loadSceneFiles } from './validate';
@@ -58,7 +58,7 @@ export async function renderCommand(sceneFile: string, raw: RawRenderOptions, ct
   const { width, height } = resolveSize(scene.image, args);
   const pngPath = raw.output ?? defaultPngPath(sceneFile, ctx.cwd);
   const hdrPath = raw.hdr;
-  await checkOutputs(pngPath, hdrPath);
+  await checkOutputs(pngPath, hdrPath, args.aov);
 
   const progress = createProgress(ctx.stderr, args.budget, width * height);
   const now = ctx.now ?? (() => performance.now() / 1000);
@@ -69,6 +69,10 @@ export async function renderCommand(sceneFile: string, raw: RawRenderOptions, ct
     progress.stop();
     const outputs: { path: string; data: Uint8Array }[] = [{ path: pngPath, data: encodePng(width, height, result.displayed) }];
     if (hdrPath !== undefined && result.linear) outputs.push({ path: hdrPath, data: encodePfm(width, height, result.linear) });
+    if (args.aov && result.guides) {
+      outputs.push({ path: args.aov.albedo, data: encodePfm(width, height, result.guides.albedo) });
+      outputs.push({ path: args.aov.normal, data: encodePfm(width, height, result.guides.normal) });
+    }
     await writeOutputs(outputs);
     const outcome = { spp: result.spp, seconds: result.seconds, width, height, files: outputs.map((f) => f.path) };
     ctx.stderr.write(`${summaryLine(outcome)}\n`);
@@ -78,12 +82,18 @@ export async function renderCommand(sceneFile: string, raw: RawRenderOptions, ct
   }
 }
 
-async function checkOutputs(pngPath: string, hdrPath: string | undefined): Promise<void> {
-  if (hdrPath !== undefined && resolve(hdrPath) === resolve(pngPath)) {
-    throw usageError(`--hdr: ${hdrPath} is also the PNG output (-o); give them different names`);
-  }
-  await checkWritable('-o', pngPath);
-  if (hdrPath !== undefined) await checkWritable('--hdr', hdrPath);
+/** Every output path is writable and names a different file (-o first, then --hdr, then --aov). */
+async function checkOutputs(pngPath: string, hdrPath: string | undefined, aov: AovPaths | undefined): Promise<void> {
+  const outputs: { flag: string; path: string }[] = [{ flag: '-o', path: pngPath }];
+  if (hdrPath !== undefined) outputs.push({ flag: '--hdr', path: hdrPath });
+  if (aov) outputs.push({ flag: '--aov', path: aov.albedo }, { flag: '--aov', path: aov.normal });
+  const problems: string[] = [];
+  outputs.forEach(({ flag, path }, i) => {
+    const earlier = outputs.slice(0, i).find((o) => resolve(o.path) === resolve(path));
+    if (earlier && earlier.flag !== flag) problems.push(`${flag}: ${path} is also the ${earlier.flag} output; give them different names`);
+  });
+  if (problems.length > 0) throw usageError(problems);
+  for (const { flag, path } of outputs) await checkWritable(flag, path);
 }
 
 /**
@@ -143,6 +153,8 @@ function interruption(): { promise: Promise<never>; dispose(): void } {
 interface RenderedImages {
   displayed: Uint8Array;
   linear?: Float32Array;
+  /** The albedo and normal guides (with --aov). */
+  guides?: Guides;
   spp: number;
   seconds: number;
 }
@@ -162,12 +174,19 @@ async function renderImages(
   progress.start();
   const { spp, seconds } = await renderBudget(session, args.budget, progress, now);
   progress.stop();
+  const pixels = size.width * size.height;
+  let guides: Guides | undefined;
+  if (args.aov) {
+    progress.status('rendering the guide buffers...');
+    guides = await readGuides(session, '--aov');
+    checkLength('albedo guide', guides.albedo.length, pixels * 4);
+    checkLength('normal guide', guides.normal.length, pixels * 4);
+  }
   if (args.denoise) {
     progress.status('denoising...');
-    const denoised = await denoiseFinalImage(session, size, { exposure: args.exposure, toneMap: args.toneMap });
-    return { ...denoised, spp, seconds };
+    const denoised = await denoiseFinalImage(session, size, { exposure: args.exposure, toneMap: args.toneMap }, guides);
+    return { ...denoised, guides, spp, seconds };
   }
-  const pixels = size.width * size.height;
   const displayed = await session.readDisplayed({ exposure: args.exposure, toneMap: args.toneMap });
   checkLength('displayed image', displayed.length, pixels * 4);
   let linear: Float32Array | undefined;
@@ -175,7 +194,7 @@ async function renderImages(
     linear = await session.readLinear();
     checkLength('linear image', linear.length, pixels * 4);
   }
-  return { displayed, linear, spp, seconds };
+  return { displayed, linear, guides, spp, seconds };
 }
 
 function checkLength(what: string, got: number, expected: number): void {

@@ -18,9 +18,9 @@ import { ROOT, runPathtrace } from '../support/cli';
 
 const SCENE = join(ROOT, 'test/fixtures/scenes/seed.json');
 
-async function render(dir: string, name: string, denoise: boolean): Promise<Float32Array> {
+async function render(dir: string, name: string, denoise: boolean, extra: string[] = []): Promise<Float32Array> {
   const hdr = join(dir, `${name}.pfm`);
-  const args = ['render', SCENE, '--spp', '16', '--seed', '3', '-o', join(dir, `${name}.png`), '--hdr', hdr];
+  const args = ['render', SCENE, '--spp', '16', '--seed', '3', '-o', join(dir, `${name}.png`), '--hdr', hdr, ...extra];
   const result = await runPathtrace(denoise ? [...args, '--denoise'] : args);
   expect(result.code, result.stderr).toBe(0);
   return decodePfm(readFileSync(hdr)).rgb;
@@ -30,7 +30,8 @@ describe('pathtrace render --denoise', () => {
   it('is finite, deterministic and at least 5x closer to the reference at 16 spp', async () => {
     const dir = mkdtempSync(join(tmpdir(), 'pathtrace-denoise-'));
     const plain = await render(dir, 'plain', false);
-    const denoised = await render(dir, 'denoised', true);
+    const [albedoFile, normalFile] = [join(dir, 'albedo.pfm'), join(dir, 'normal.pfm')];
+    const denoised = await render(dir, 'denoised', true, ['--aov', `${albedoFile},${normalFile}`]);
     const again = await render(dir, 'again', true);
     const reference = loadReference('seed');
     const image = (data: Float32Array) => ({ width: reference.width, height: reference.height, channels: 3, data });
@@ -39,5 +40,17 @@ describe('pathtrace render --denoise', () => {
     const before = relativeMse(image(plain), reference);
     const after = relativeMse(image(denoised), reference);
     expect(after * 5, `relMSE ${before.toExponential(3)} plain, ${after.toExponential(3)} denoised`).toBeLessThan(before);
+
+    // --aov wrote the guides the denoiser used: the sky (top left) has its
+    // clamped radiance as albedo and a zero normal; the ground (bottom left)
+    // its colour and the normal (0, 1, 0), the same in every guide sample.
+    const albedo = decodePfm(readFileSync(albedoFile));
+    const normal = decodePfm(readFileSync(normalFile));
+    const at = (image: { width: number; rgb: Float32Array }, x: number, y: number) => Array.from(image.rgb.slice((y * image.width + x) * 3, (y * image.width + x) * 3 + 3));
+    const [top, bottom] = [0, reference.height - 1];
+    expect(at(normal, 0, top)).toEqual([0, 0, 0]);
+    at(albedo, 0, top).forEach((v, c) => expect(v).toBeCloseTo([0.55, 0.7, 1.0][c] * 0.35, 5));
+    expect(at(normal, 0, bottom)).toEqual([0, 1, 0]);
+    at(albedo, 0, bottom).forEach((v, c) => expect(v).toBeCloseTo([0.75, 0.75, 0.72][c], 5));
   }, 300_000);
 });

@@ -47,6 +47,7 @@ function fakeSessionModule(options: FakeOptions = {}) {
     renders: [] as number[],
     displayed: [] as { exposure: number; toneMap: string }[],
     linearReads: 0,
+    aovReads: 0,
   };
   let clock = 0;
   const now = () => clock;
@@ -81,6 +82,14 @@ function fakeSessionModule(options: FakeOptions = {}) {
           const out = new Uint8Array(size.width * size.height * 4);
           for (let i = 0; i < out.length; i++) out[i] = (i * 3 + size.seed) & 0xff;
           return out;
+        },
+        async readAovs() {
+          log.aovReads++;
+          const pixels = size.width * size.height;
+          const albedo = new Float32Array(pixels * 4).fill(0.5);
+          const normal = new Float32Array(pixels * 4);
+          for (let i = 0; i < pixels; i++) normal[i * 4 + 1] = 1;
+          return { albedo, normal, samples: 1 };
         },
         async close() {
           log.closed++;
@@ -352,6 +361,34 @@ describe('output files', () => {
     const { code, stderr } = await cli(['render', fixture('seed'), '-o', out, '--hdr', out]);
     expect(code).toBe(2);
     expect(stderr.lines[0]).toMatch(/^--hdr: /);
+  });
+
+  it('--aov writes the albedo and normal guides as PFM, once each, beside the PNG', async () => {
+    const [albedo, normal] = [join(dir, 'albedo.pfm'), join(dir, 'normal.pfm')];
+    const { code, stderr, log } = await cli(['render', fixture('seed'), '--spp', '2', '--width', '8', '--aov', `${albedo},${normal}`]);
+    expect(code, stderr.text).toBe(0);
+    expect(log.aovReads).toBe(1);
+    const a = decodePfm(readFileSync(albedo));
+    const n = decodePfm(readFileSync(normal));
+    expect([a.width, n.width]).toEqual([8, 8]);
+    expect(Array.from(a.rgb.slice(0, 3))).toEqual([0.5, 0.5, 0.5]);
+    expect(Array.from(n.rgb.slice(0, 3))).toEqual([0, 1, 0]);
+    expect(stderr.lines.at(-1)).toContain('albedo.pfm');
+  });
+
+  it('--aov needs two different paths, none of them another output', async () => {
+    const bad = ['one.pfm', 'a.pfm,', ',b.pfm', 'a.pfm,b.pfm,c.pfm', 'a.pfm,a.pfm'];
+    for (const value of bad) {
+      const { code, stderr, log } = await cli(['render', fixture('seed'), '--aov', value]);
+      expect(code, value).toBe(2);
+      expect(stderr.lines, value).toHaveLength(1);
+      expect(stderr.lines[0], value).toMatch(/^--aov: /);
+      expect(log.opened).toBe(0);
+    }
+    const out = join(dir, 'x.pfm');
+    const clash = await cli(['render', fixture('seed'), '--hdr', out, '--aov', `${out},${join(dir, 'n.pfm')}`]);
+    expect(clash.code).toBe(2);
+    expect(clash.stderr.lines).toEqual([`--aov: ${out} is also the --hdr output; give them different names`]);
   });
 
   it('a render failure exits 1 with one line, keeps an existing output and leaves no temp file', async () => {
