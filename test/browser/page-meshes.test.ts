@@ -14,6 +14,7 @@ import { meshBounds } from '../../src/scene/picking';
 import { canvasPixels, canvasPoint, drag, meanAbsDifference, openPage, savedScene, spp, waitForSpp, usePageHarness } from '../support/page';
 
 const ICO = fileURLToPath(new URL('../fixtures/meshes/ico-smooth.obj', import.meta.url));
+const DRACO = fileURLToPath(new URL('../fixtures/meshes/ico-smooth-draco.glb', import.meta.url));
 
 type SavedMesh = { file: string; position: number[]; rotation: number[]; scale: number | number[]; material: Record<string, unknown> };
 const meshesOf = async (page: Page) => ((await savedScene(page)).meshes ?? []) as SavedMesh[];
@@ -93,6 +94,16 @@ describe('meshes on the page', () => {
     expect(errors).toEqual([]);
     await page.close();
   }, 180_000);
+
+  it('opens a Draco-compressed glTF: the page decodes it in its worker (the page itself allows no WebAssembly)', async () => {
+    const { page, errors } = await openPage(harness(), { minSpp: 1 });
+    await page.setInputFiles('#file', DRACO);
+    await expect.poll(async () => (await meshesOf(page)).map((m) => m.file), { timeout: 30_000 }).toEqual(['ico-smooth-draco.glb']);
+    await page.waitForFunction(() => document.body.dataset.meshes === 'ready');
+    expect(await page.getByTestId('error').isHidden()).toBe(true);
+    expect(errors).toEqual([]);
+    await page.close();
+  }, 120_000);
 
   it('opens the bundled bunny example, adds a model to it, and both come back after a reload', async () => {
     const { page, errors } = await openPage(harness(), { minSpp: 1 });
