@@ -11,7 +11,7 @@
  * 512x384 for the bundled network and OIDN's small one (from node_modules,
  * for comparison only).
  *
- *   npx tsx bench/denoise.ts [--scenes seed,glossy] [--spp 4,16,64,128,256] [--clamp 16] [--runs 2] [--guides tracer|mitsuba]
+ *   npx tsx bench/denoise.ts [--scenes seed,glossy] [--spp 4,16,64,128,256] [--clamp 16] [--runs 2] [--guides tracer|mitsuba] [--weights other.tza]
  */
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
@@ -40,7 +40,14 @@ function rgba(width: number, height: number, data: Float32Array): LinearImage {
 
 type GuideSource = 'tracer' | 'mitsuba';
 
-async function measureScene(session: RenderSession, name: string, sppList: number[], clamp: number, guideSource: GuideSource): Promise<Row[]> {
+async function measureScene(
+  session: RenderSession,
+  name: string,
+  sppList: number[],
+  clamp: number,
+  guideSource: GuideSource,
+  weights: string | undefined,
+): Promise<Row[]> {
   const sceneFile = fileURLToPath(new URL(`test/fixtures/scenes/${name}.json`, root));
   const scene = parseSceneText(readFileSync(sceneFile, 'utf8'));
   const { width, height } = scene.image;
@@ -56,8 +63,8 @@ async function measureScene(session: RenderSession, name: string, sppList: numbe
     const color = await session.readLinear();
     const guides = fixedGuides ?? (await session.readAovs());
     const input = { width, height, color, albedo: guides.albedo, normal: guides.normal };
-    const denoised = await session.denoise(input);
-    const clamped = await session.denoise(input, { clampInput: clamp });
+    const denoised = await session.denoise(input, { weights });
+    const clamped = await session.denoise(input, { clampInput: clamp, weights });
     const ref = rgba(width, height, reference.data);
     const score = (data: Float32Array) => relativeMse(rgba(width, height, data), ref);
     rows.push({ scene: name, spp, plain: score(color), denoised: score(denoised.data), clamped: score(clamped.data) });
@@ -94,6 +101,7 @@ async function main(): Promise<void> {
       scenes: { type: 'string', default: 'seed,glossy,small-light,mirrors,furnace,glass,emissive,envmap,bunny' },
       spp: { type: 'string', default: '4,16,64,128,256' },
       guides: { type: 'string', default: 'tracer' },
+      weights: { type: 'string' },
       clamp: { type: 'string', default: '16' },
       runs: { type: 'string', default: '2' },
     },
@@ -101,14 +109,17 @@ async function main(): Promise<void> {
   const sppList = values.spp.split(',').map(Number);
   const clamp = Number(values.clamp);
   if (values.guides !== 'tracer' && values.guides !== 'mitsuba') throw new Error(`--guides: tracer or mitsuba (got ${values.guides})`);
+  // Other weights than the bundled ones (a .tza path), for comparison only.
+  const weights = values.weights === undefined ? undefined : readFileSync(values.weights).toString('base64');
   const session = await openRenderSession();
   try {
+    if (values.weights) console.log(`weights: ${values.weights}`);
     console.log(`guides: ${values.guides === 'tracer' ? "the tracer's own (readAovs)" : "Mitsuba's"}\n`);
     console.log(`| scene | spp | plain relMSE | denoised | denoised, input clamped to ${clamp} | plain / denoised |`);
     console.log('| --- | --- | --- | --- | --- | --- |');
     const verdicts: string[] = [];
     for (const name of values.scenes.split(',')) {
-      const rows = await measureScene(session, name, sppList, clamp, values.guides);
+      const rows = await measureScene(session, name, sppList, clamp, values.guides, weights);
       for (const r of rows) {
         console.log(`| ${r.scene} | ${r.spp} | ${e(r.plain)} | ${e(r.denoised)} | ${e(r.clamped)} | ${r.denoised > 0 ? (r.plain / r.denoised).toFixed(1) + 'x' : '-'} |`);
       }
