@@ -11,10 +11,16 @@ import { cameraRay } from '../scene/camera';
 import { pickObject, pickSurface, projectSphere, type MeshLookup, type ObjectHit, type ObjectKind } from '../scene/picking';
 import type { Camera, Scene, Vec3 } from '../scene/types';
 import { History } from './history';
+import { LiveDenoiser } from './liveDenoise';
 import { worldBoundingSphere } from './meshFit';
 import { MeshUploads } from './meshUploads';
 import { RenderLoop, type RenderStats, type ViewSettings } from './renderLoop';
 import type { SavedState } from './savedState';
+
+/** The panel's view settings: the render loop's, and whether the still image is denoised. */
+export interface PageView extends ViewSettings {
+  denoise: boolean;
+}
 
 export interface Selection {
   kind: ObjectKind;
@@ -34,9 +40,11 @@ export class App {
   scene: Scene;
   selection: Selection | null = null;
   readonly history = new History<Scene>();
-  readonly view: ViewSettings = { exposure: 0, toneMap: 'aces', paused: false, targetSpp: 0 };
+  readonly view: PageView = { exposure: 0, toneMap: 'aces', paused: false, targetSpp: 0, denoise: false };
   readonly tracer: PathTracer;
   readonly loop: RenderLoop;
+  /** Denoises the still image when view.denoise is on (liveDenoise.ts). */
+  readonly denoiser: LiveDenoiser;
   /** Every map and model loaded this session (undo and redo may return to any scene that named one). */
   assets: SceneAssets = NO_ASSETS;
   /** A recent copy of the running sums: a lost context resumes from it. */
@@ -67,9 +75,15 @@ export class App {
     this.snapshots = new SnapshotKeeper(this.tracer);
     this.meshUploads = new MeshUploads(this.tracer, () => ({ scene: this.scene, assets: this.assets }), (m) => this.onUploadError(m));
     this.upload();
+    this.denoiser = new LiveDenoiser(this.tracer, this.view, {
+      moving: () => this.moving,
+      stopped: () => this.view.paused || this.loop.done,
+      redisplay: () => this.loop.invalidateDisplay(),
+    });
     const beforeFrame = () => {
       this.applyResolution();
       this.snapshots.tick();
+      this.denoiser.tick();
     };
     this.loop = new RenderLoop(this.tracer, this.view, beforeFrame, onStats);
   }
@@ -277,11 +291,15 @@ export class App {
 
   /** Before each frame: reduced resolution while something moves, full when it stops. */
   private applyResolution(): void {
-    const moving = performance.now() < this.movingUntil;
-    const scale = moving ? MOVING_SCALE : 1;
+    const scale = this.moving ? MOVING_SCALE : 1;
     const width = Math.max(8, Math.round(this.fullSize.width * scale));
     const height = Math.max(8, Math.round(this.fullSize.height * scale));
     if (width !== this.tracer.width || height !== this.tracer.height) this.tracer.setSize(width, height);
+  }
+
+  /** True while the camera or an object moves (and shortly after): rendered at reduced resolution. */
+  get moving(): boolean {
+    return performance.now() < this.movingUntil;
   }
 
   /** Marks the view as moving (wheel, drag) so the loop renders at reduced resolution. */

@@ -23,6 +23,7 @@ import { MAP_EXAMPLES } from './mapExamples';
 import { Panel } from './panel';
 import { encodePfm } from '../image/pfm';
 import type { RenderStats } from './renderLoop';
+import type { DenoiseState } from './liveDenoise';
 
 const $ = <T extends HTMLElement = HTMLElement>(id: string) => document.getElementById(id) as T;
 const SVG_NS = 'http://www.w3.org/2000/svg';
@@ -59,6 +60,7 @@ async function start(): Promise<void> {
   const maps = new EnvironmentMaps(app, autosave, showIssues, clearError);
   const panel = new Panel(app, $('panel'), maps);
   app.onUploadError = (message) => showError(message);
+  wireDenoiser(app);
   const loader = openStartState(app, autosave, startState);
   attachInput(app, canvas);
   attachKeys(app);
@@ -122,6 +124,24 @@ function showStats(stats: RenderStats): void {
   $('resolution').textContent = `${stats.width}×${stats.height}`;
   $('state').textContent = stats.state === 'rendering' ? '' : stats.state;
   document.body.dataset.render = stats.state;
+}
+
+// ---------------------------------------------------------------- denoiser
+
+function wireDenoiser(app: App): void {
+  app.denoiser.onState = showDenoiseState;
+  app.denoiser.onFailure = (message) => {
+    // The toggle is already off again; the scene and its samples are untouched.
+    showError('Denoising is not available in this browser; the raw image is shown.', [message]);
+    app.changed();
+  };
+}
+
+function showDenoiseState(state: DenoiseState): void {
+  const status = $('denoise-status');
+  status.textContent = state.text;
+  status.title = state.text;
+  document.body.dataset.shown = state.shown;
 }
 
 // ---------------------------------------------------------------- toolbar
@@ -268,7 +288,7 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader, maps: Envi
   }));
   $('save-pfm').addEventListener('click', whenRendering(() => {
     const { width, height } = app.tracer;
-    const bytes = encodePfm(width, height, app.tracer.readLinear());
+    const bytes = encodePfm(width, height, app.denoiser.shownLinear ?? app.tracer.readLinear());
     downloadBlob(new Blob([bytes], { type: 'application/octet-stream' }), 'pathtrace.pfm');
   }));
 }

@@ -166,6 +166,8 @@ export class Panel {
     folder.add(view, 'toneMap', [...TONEMAPS]).name('tone map').onChange(redisplay).onFinishChange(saved);
     folder.add(view, 'targetSpp', 0, 100000, 1).name('stop at spp (0 = never)').onFinishChange(saved);
     folder.add(view, 'paused').name('paused');
+    // Followed by app.denoiser each frame; a denoiser that cannot start turns it off again.
+    folder.add(view, 'denoise').name('denoise (still view)').onFinishChange(saved);
     folder.open();
   }
 }

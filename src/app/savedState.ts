@@ -26,6 +26,8 @@ export interface SavedView {
   exposure: number;
   toneMap: ToneMap;
   targetSpp: number;
+  /** The "Denoise" toggle (records saved before it existed lack it: off). */
+  denoise: boolean;
 }
 
 export interface SavedState {
@@ -54,6 +56,7 @@ const envelope = z.object({
     exposure: z.number().finite().min(-20).max(20),
     toneMap: z.enum(TONEMAPS),
     targetSpp: z.number().int().min(0).max(1e9),
+    denoise: z.boolean().default(false),
   }),
   undo: z.array(z.unknown()),
   redo: z.array(z.unknown()),
@@ -80,7 +83,7 @@ export function encodeState(state: SavedState, savedAt = Date.now()): { text: st
     savedAt,
     scene: serializeScene(state.scene),
     homeCamera,
-    view: { exposure: state.view.exposure, toneMap: state.view.toneMap, targetSpp: state.view.targetSpp },
+    view: { exposure: state.view.exposure, toneMap: state.view.toneMap, targetSpp: state.view.targetSpp, denoise: state.view.denoise },
     linkDigest: state.linkDigest,
     assets: state.assets,
   });

@@ -12,7 +12,7 @@ import { NO_ASSETS, type SceneAssets } from '../scene/assets';
 import type { Scene } from '../scene/types';
 import { type AnyCanvas, createContext, rendererInfo, requireFloatTargets } from './gl/context';
 import { flipRows } from './gl/rows';
-import { PingPong } from './gl/targets';
+import { FloatTarget, PingPong } from './gl/targets';
 import { AovPass } from './passes/aov';
 import { DisplayPass, type DisplayOptions } from './passes/display';
 import { TracePass } from './passes/trace';
@@ -70,6 +70,8 @@ interface Resources {
   sums: PingPong;
   /** The guide buffers; created on first use. */
   aov: AovPass | null;
+  /** A linear image shown instead of the running mean (showImage), or null. */
+  shown: FloatTarget | null;
 }
 
 export class PathTracer {
@@ -81,6 +83,7 @@ export class PathTracer {
   private readonly sampler: SamplerKind;
   private readonly russianRoulette: boolean;
   private keepAovs: boolean;
+  private aovSamples = AOV_SAMPLES;
   private size: { width: number; height: number };
   private samples = 0;
   /** Counts restarts of accumulation (scene, size, seed, reset); not a context loss. */
@@ -173,11 +176,17 @@ export class PathTracer {
     this.generation++;
     this.resources?.sums.clear();
     this.resources?.aov?.clear();
+    this.showImage(null);
   }
 
-  /** Whether render() accumulates the guide buffers (PathTracerOptions.aovs). */
-  setAovs(enabled: boolean): void {
+  /**
+   * Whether render() accumulates the guide buffers (PathTracerOptions.aovs),
+   * and the most samples per pixel they get (1 to AOV_SAMPLES; fewer cost
+   * less, and the guides converge fast).
+   */
+  setAovs(enabled: boolean, maxSamples = AOV_SAMPLES): void {
     this.keepAovs = enabled;
+    this.aovSamples = Math.max(1, Math.min(AOV_SAMPLES, Math.floor(maxSamples)));
   }
 
   /**
@@ -201,7 +210,7 @@ export class PathTracer {
 
   /**
    * The denoiser's guides (see Aovs) for the current accumulation, over
-   * min(AOV_SAMPLES, sampleCount) samples per pixel (at least 1): the
+   * min(AOV_SAMPLES or setAovs's maxSamples, sampleCount) samples per pixel (at least 1): the
    * samples missing are rendered now (one draw), so the guides are there
    * whether or not render() kept them.
    */
@@ -214,19 +223,51 @@ export class PathTracer {
     return { albedo: mean(sums.albedo), normal: mean(sums.normal), samples: aov.samples };
   }
 
-  /** Brings the guides to min(AOV_SAMPLES, sampleCount) samples per pixel (at least 1). */
+  /** Brings the guides to min(their most samples, sampleCount) samples per pixel (at least 1). */
   private completeAovs(r: Resources): AovPass {
     r.aov ??= new AovPass(this.gl, this.size.width, this.size.height, this.sampler);
-    const missing = Math.min(AOV_SAMPLES, Math.max(1, this.samples)) - r.aov.samples;
+    const missing = Math.min(this.aovSamples, Math.max(1, this.samples)) - r.aov.samples;
     if (missing > 0) r.aov.draw(r.trace, missing, this.seed);
     return r.aov;
   }
 
-  /** Draws the current mean image to the canvas. */
+  /** Draws the current mean image (or the image given to showImage) to the canvas. */
   display(options: DisplayOptions = {}): void {
     const r = this.resources;
     if (!r || this.gl.isContextLost()) return;
-    r.display.draw(r.sums.read, this.samples, options, null, this.gl.drawingBufferWidth, this.gl.drawingBufferHeight);
+    const shown = this.displayed(r);
+    r.display.draw(shown.target, shown.samples, options, null, this.gl.drawingBufferWidth, this.gl.drawingBufferHeight);
+  }
+
+  /**
+   * Shows `linear` (RGBA float32 of the render size, rows top to bottom: a
+   * denoised image) instead of the running mean, in display() and
+   * readDisplayed(), through the same exposure and tone map; until
+   * showImage(null), a restart of accumulation (scene, size, seed, reset) or
+   * a lost context. Rendering still adds samples to the mean meanwhile.
+   */
+  showImage(linear: Float32Array | null): void {
+    const r = this.resources;
+    r?.shown?.dispose();
+    if (r) r.shown = null;
+    if (!linear || !r || this.gl.isContextLost()) return;
+    const { width, height } = this.size;
+    if (linear.length !== width * height * 4) throw new Error(`showImage: expected ${width * height * 4} values (RGBA ${width}x${height}), got ${linear.length}`);
+    const gl = this.gl;
+    r.shown = new FloatTarget(gl, width, height);
+    gl.bindTexture(gl.TEXTURE_2D, r.shown.texture);
+    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RGBA, gl.FLOAT, flipRows(linear, width, height, 4));
+    gl.bindTexture(gl.TEXTURE_2D, null);
+  }
+
+  /** Whether display() shows an image given to showImage rather than the running mean. */
+  get showsImage(): boolean {
+    return !!this.resources?.shown;
+  }
+
+  /** What display() and readDisplayed() show: the image given to showImage (as a mean of 1 sample), else the running sums. */
+  private displayed(r: Resources): { target: FloatTarget; samples: number } {
+    return r.shown ? { target: r.shown, samples: 1 } : { target: r.sums.read, samples: this.samples };
   }
 
   /**
@@ -240,10 +281,11 @@ export class PathTracer {
     return flipRows(sums.map((v) => v * scale), this.size.width, this.size.height, 4);
   }
 
-  /** The displayed image (exposure, tone map, sRGB) as RGBA8, rows from top to bottom. */
+  /** The displayed image (exposure, tone map, sRGB; the mean, or showImage's) as RGBA8, rows from top to bottom. */
   readDisplayed(options: DisplayOptions = {}): Uint8Array {
     const r = this.requireResources();
-    return r.display.read(r.sums.read, this.samples, options, this.size.width, this.size.height);
+    const shown = this.displayed(r);
+    return r.display.read(shown.target, shown.samples, options, this.size.width, this.size.height);
   }
 
   /** Blocks until the GPU has finished every queued draw (for timing). */
@@ -306,7 +348,7 @@ export class PathTracer {
     // An empty vertex array: the full-screen triangle comes from gl_VertexID.
     this.gl.bindVertexArray(this.gl.createVertexArray());
     const aov = this.keepAovs ? new AovPass(this.gl, this.size.width, this.size.height, this.sampler) : null;
-    return { trace, display, sums, aov };
+    return { trace, display, sums, aov, shown: null };
   }
 
   private disposeResources(): void {
@@ -317,6 +359,7 @@ export class PathTracer {
     r.display.dispose();
     r.sums.dispose();
     r.aov?.dispose();
+    r.shown?.dispose();
   }
 
   private requireResources(): Resources {

@@ -25,7 +25,7 @@ function state(overrides: Partial<SavedState> = {}): SavedState {
   return {
     scene,
     homeCamera: defaultScene().camera,
-    view: { exposure: 1.5, toneMap: 'agx', targetSpp: 64 },
+    view: { exposure: 1.5, toneMap: 'agx', targetSpp: 64, denoise: true },
     undo: [defaultScene(), parseScene(PRESETS.glossy)],
     redo: [parseScene(PRESETS.mirrors)],
     linkDigest: linkDigest('#scene=abc'),
@@ -50,6 +50,14 @@ describe('saved state', () => {
     expect(json(decoded.state.undo)).toEqual(json(original.undo));
     expect(json(decoded.state.redo)).toEqual(json(original.redo));
     expect(decoded.state.linkDigest).toBe(original.linkDigest);
+  });
+
+  it('reads a record saved before the Denoise toggle existed with the toggle off', () => {
+    const record = JSON.parse(encodeState(state()).text);
+    delete record.view.denoise;
+    const decoded = decodeState(JSON.stringify(record));
+    if (!decoded.ok) throw new Error(decoded.reason);
+    expect(decoded.state.view).toEqual({ exposure: 1.5, toneMap: 'agx', targetSpp: 64, denoise: false });
   });
 
   it('keeps the newest undo steps that fit the history budget', () => {
