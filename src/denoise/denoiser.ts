@@ -20,6 +20,7 @@ import { UNet, UNET_ALIGNMENT, UNET_INPUT_CHANNELS } from './unet';
 import { parseTza } from './tza';
 import { albedoInput, autoexposure, colorForward, colorInverse, normalInput } from './transfer';
 import { ensureWasmBackend } from './backend';
+import { DenoiseError } from './errors';
 
 export interface DenoiseInput {
   width: number;
@@ -57,12 +58,7 @@ export interface Denoiser {
   dispose(): void;
 }
 
-export class DenoiseError extends Error {
-  constructor(message: string) {
-    super(message);
-    this.name = 'DenoiseError';
-  }
-}
+export { DenoiseError };
 
 export async function createDenoiser(options: DenoiserOptions = {}): Promise<Denoiser> {
   const clamp = options.clampInput;

@@ -5,7 +5,7 @@
  * are copied, not transferred (the caller keeps them).
  */
 import type { Denoiser, DenoiserOptions } from './denoiser';
-import { DenoiseError } from './denoiser';
+import { DenoiseError } from './errors';
 
 interface Reply {
   id: number;
