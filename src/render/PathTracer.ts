@@ -128,10 +128,10 @@ export class PathTracer {
     this.russianRoulette = options.russianRoulette ?? false;
     this.keepAovs = options.aovs ?? false;
     if (options.pathsPerDraw !== undefined) this.pathsPerDraw = options.pathsPerDraw;
-    this.tiles = new TileLayout(this.size.width, this.size.height);
     this.gl = createContext(this.canvas, options.preserveDrawingBuffer ?? false);
     this.canvas.addEventListener('webglcontextlost', this.onContextLost as EventListener);
     this.canvas.addEventListener('webglcontextrestored', this.onContextRestored as EventListener);
+    this.tiles = this.tileLayout();
     this.resizeCanvas();
     this.resources = this.createResources();
   }
@@ -202,7 +202,7 @@ export class PathTracer {
   setSize(width: number, height: number): void {
     if (width === this.size.width && height === this.size.height) return;
     this.size = { width: Math.max(1, Math.floor(width)), height: Math.max(1, Math.floor(height)) };
-    this.tiles = new TileLayout(this.size.width, this.size.height);
+    this.tiles = this.tileLayout();
     this.resizeCanvas();
     if (this.resources) {
       this.resources.sums.dispose();
@@ -286,22 +286,25 @@ export class PathTracer {
         left -= tiles * perTile;
         continue;
       }
-      const n = Math.min(Math.floor(left / pixels), this.samplesPerFullDraw());
+      // Without tiles (points too small for them: TileLayout.usable), the nearest whole number of samples, at least one.
+      const whole = this.tiles.usable ? Math.floor(left / pixels) : Math.max(traced === 0 ? 1 : 0, Math.round(left / pixels));
+      const n = Math.min(whole, this.samplesPerFullDraw());
       if (n >= 1) {
         this.drawSamples(r, n);
         traced += n * pixels;
         left -= n * pixels;
         continue;
       }
-      if (traced > 0 && left < perTile / 2) break;
+      if (traced > 0 && (left < perTile / 2 || !this.tiles.usable)) break;
       this.startPass(r);
     }
     return traced;
   }
 
-  /** Whole samples per pixel that fit in one draw (pathsPerDraw); 0 when one sample does not. */
+  /** Whole samples per pixel that fit in one draw (pathsPerDraw); 0 when one sample does not (1 without tiles). */
   private samplesPerFullDraw(): number {
-    return Math.floor(this.pathsPerDraw / (this.size.width * this.size.height));
+    const n = Math.floor(this.pathsPerDraw / (this.size.width * this.size.height));
+    return this.tiles.usable ? n : Math.max(1, n);
   }
 
   /** One draw of `n` whole samples per pixel. */
@@ -505,6 +508,11 @@ export class PathTracer {
   private requireResources(): Resources {
     if (!this.resources) throw new Error('the WebGL context is lost; wait for it to be restored');
     return this.resources;
+  }
+
+  private tileLayout(): TileLayout {
+    const range = this.gl.getParameter(this.gl.ALIASED_POINT_SIZE_RANGE) as Float32Array | null;
+    return new TileLayout(this.size.width, this.size.height, range?.[1] ?? 1024);
   }
 
   private resizeCanvas(): void {

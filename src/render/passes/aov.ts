@@ -23,7 +23,7 @@ const UNIFORM_TYPES: Record<string, string> = {
   uSamplesPerDraw: 'uint',
   uSeed: 'uint',
   uTiles: 'uvec4',
-  uTileTarget: 'uvec2',
+  uTileGrid: 'uvec3',
 };
 
 /** Texture units of the sums read (0 and one after the scene's units 1-6). */
@@ -137,7 +137,8 @@ export class AovPass {
     gl.bindTexture(gl.TEXTURE_2D, read.albedo.texture);
     gl.bindFramebuffer(gl.FRAMEBUFFER, write.framebuffer);
     gl.viewport(0, 0, write.albedo.width, write.albedo.height);
-    gl.drawArrays(gl.TRIANGLES, 0, tiles ? 6 * tiles.count : 3);
+    if (tiles) gl.drawArrays(gl.POINTS, 0, tiles.count);
+    else gl.drawArrays(gl.TRIANGLES, 0, 3);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     // No sampler keeps pointing at a target the next draw writes.
     gl.activeTexture(gl.TEXTURE0 + NORMAL_UNIT);

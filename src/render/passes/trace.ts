@@ -31,7 +31,7 @@ const UNIFORM_TYPES: Record<string, string> = {
   uSeed: 'uint',
   uSceneData: 'sampler2D',
   uTiles: 'uvec4',
-  uTileTarget: 'uvec2',
+  uTileGrid: 'uvec3',
 };
 
 const SCENE_BLOCK_BINDING = 0;
@@ -194,7 +194,8 @@ export class TracePass {
     gl.bindTexture(gl.TEXTURE_2D, targets.read.texture);
     gl.bindFramebuffer(gl.FRAMEBUFFER, targets.write.framebuffer);
     gl.viewport(0, 0, targets.write.width, targets.write.height);
-    gl.drawArrays(gl.TRIANGLES, 0, tiles ? 6 * tiles.count : 3);
+    if (tiles) gl.drawArrays(gl.POINTS, 0, tiles.count);
+    else gl.drawArrays(gl.TRIANGLES, 0, 3);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
   }
 
