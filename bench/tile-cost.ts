@@ -4,8 +4,8 @@
  * hit every size alike. Prints, per draw size, the time per sample (wall and
  * CPU of the GPU process, where SwiftShader runs) and its ratio to untiled
  * draws (one draw per sample). For the seed scene and a generated mesh:
- *   npx tsx bench/tile-cost.ts [--scene seed|mesh] [--triangles 1000000] [--size 512x384] [--paths 1000,4000,30000] [--spp 2] [--rounds 3]
- * (run after `npm run build:web`).
+ *   npx tsx bench/tile-cost.ts [--scene seed|mesh] [--triangles 1000000] [--size 512x384] [--paths 1000,4000,30000] [--spp 2] [--rounds 3] [--web DIR]
+ * (run after `npm run build:web`; --web: another build's dist/web).
  */
 import { readFileSync } from 'node:fs';
 import { openRenderSession } from '../src/node/session';
@@ -27,7 +27,8 @@ async function main(argv: string[]): Promise<void> {
   const rounds = Number(option(argv, 'rounds', '3'));
   // 0 = untiled: one draw per sample.
   const sizes = [0, ...option(argv, 'paths', '1000,4000,30000').split(',').map(Number)];
-  const session = await openRenderSession();
+  const web = option(argv, 'web', '');
+  const session = await openRenderSession(web ? { webRoot: web } : {});
   try {
     const load = async () => {
       if (which === 'mesh') {
