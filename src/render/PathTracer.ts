@@ -263,7 +263,7 @@ export class PathTracer {
   }
 
   /**
-   * Traces about `paths` paths (at least one tile, about 256 paths): whole
+   * Traces about `paths` paths (at least one tile of 16x16 pixels): whole
    * samples while `paths` covers the image, else a part of the sample in
    * progress, which counts (sampleCount, display, readLinear) once every
    * pixel has it (sampleProgress tells how far it is). For a frame budget on
