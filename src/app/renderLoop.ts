@@ -53,6 +53,8 @@ const PATHS_PER_DRAW = 1_000_000;
  */
 const START_PATHS_MESHES = 1024;
 const START_PATHS = 16_384;
+/** How often the first sample is shown while it fills in. */
+const PREVIEW_MS = 250;
 /** Fewest paths per frame: one tile (render/tiles.ts). */
 const MIN_PATHS = 256;
 
@@ -83,6 +85,7 @@ export class RenderLoop {
   /** Paths traced in the last frame that rendered. */
   private lastPaths = 0;
   private displayDirty = true;
+  private lastDisplay = 0;
   /** Samples (complete plus the fraction in progress) at the end of the last frame. */
   private lastCount = 0;
   private elapsedMs = 0;
@@ -155,17 +158,31 @@ export class RenderLoop {
       this.lastPaths = paths > 0 ? this.timer.measure(() => tracer.renderPaths(paths)) : 0;
       this.queue.submitted(now, this.lastPaths * (this.budget.costPerPath ?? target / Math.max(1, this.lastPaths)));
       this.elapsedMs += this.renderedLastFrame ? dt : 0;
-      // The image changes when a sample completes, and while the first one fills in.
-      if (tracer.sampleCount !== before || (tracer.sampleCount === 0 && this.lastPaths > 0)) this.displayDirty = true;
+      if (tracer.sampleCount !== before || this.previewDue(now)) this.displayDirty = true;
     }
     this.renderedLastFrame = working;
     if (this.displayDirty && !lost) {
       tracer.display({ exposure: this.settings.exposure, toneMap: this.settings.toneMap });
       this.displayDirty = false;
+      this.lastDisplay = now;
     }
     this.lastCount = tracer.sampleCount + tracer.sampleProgress;
     this.onStats(this.stats(now, lost));
   };
+
+  /**
+   * Whether to show the first sample as it fills in: every PREVIEW_MS, while
+   * it has more than PREVIEW_MS * 4 of work left (a display costs a frame's
+   * worth of work with a software GPU, the page's compositing included, and
+   * a first sample due soon is better shown whole).
+   */
+  private previewDue(now: number): boolean {
+    const tracer = this.tracer;
+    if (tracer.sampleCount > 0 || this.lastPaths === 0 || now - this.lastDisplay < PREVIEW_MS) return false;
+    const msPerPath = this.budget.costPerPath;
+    if (msPerPath === null) return true;
+    return (1 - tracer.sampleProgress) * tracer.width * tracer.height * msPerPath > PREVIEW_MS * 4;
+  }
 
   private budgetOptions(): PathBudgetOptions {
     const pixels = this.tracer.width * this.tracer.height;
@@ -187,11 +204,14 @@ export class RenderLoop {
     }
     if (changed) {
       this.timer.discard(); // measurements of the old scene
-    } else if (this.timer.available) {
+      return;
+    }
+    if (this.timer.available) {
       for (const m of this.timer.poll()) this.budget.observe(m.ms, m.paths);
     } else if (this.renderedLastFrame && dt > 0) {
       this.budget.observe(dt, this.lastPaths);
     }
+    if (this.renderedLastFrame && dt > 0) this.budget.observeGap(dt, this.lastPaths);
   }
 
   private restartClock(): void {
