@@ -4,8 +4,12 @@
  * page's file input as a user would, then every animation-frame gap is
  * recorded while it decodes, while its BVH is built in the worker, and for
  * `--seconds` of rendering afterwards; the seed scene without the mesh is
- * measured first for comparison. Run after `npm run build:web`:
- *   npx tsx bench/mesh-page-frames.ts [--triangles 1000000] [--seconds 15] [--paused]
+ * measured first for comparison. Prints the frame gaps' percentiles and
+ * maximum, samples per second (with the fraction of the sample in progress,
+ * where the page tells it) and the render loop's paths per frame. Run after
+ * `npm run build:web`:
+ *   npx tsx bench/mesh-page-frames.ts [--triangles 1000000] [--seconds 15] [--paused] [--web DIR]
+ * (--web: another build's dist/web, to compare.)
  * (--paused: the render is paused while the model loads, to see the page's own work.)
  */
 import { mkdtempSync, writeFileSync } from 'node:fs';
@@ -40,7 +44,18 @@ async function gaps(page: Page, from: number, to: number): Promise<string> {
   if (!d.length) return 'no frames';
   const q = (p: number) => d[Math.min(d.length - 1, Math.floor(p * d.length))].toFixed(0);
   const over = d.filter((x) => x > 100).length;
-  return `${d.length} frames, median ${q(0.5)} ms, p95 ${q(0.95)} ms, max ${d[d.length - 1].toFixed(0)} ms, ${over} over 100 ms`;
+  return `${d.length} frames, median ${q(0.5)} ms, p95 ${q(0.95)} ms, p99 ${q(0.99)} ms, max ${d[d.length - 1].toFixed(0)} ms, ${over} over 100 ms`;
+}
+
+/** Samples per pixel the page has: complete ones plus the fraction of the one in progress where the page tells it. */
+async function samples(page: Page): Promise<number> {
+  return page.evaluate(() => Number(document.body.dataset.samples ?? document.querySelector('[data-testid="spp"]')?.textContent));
+}
+
+/** The paths per frame the render loop chose (pages built before it tell nothing). */
+async function pathsPerFrame(page: Page): Promise<string> {
+  const paths = await page.evaluate(() => document.body.dataset.pathsPerFrame);
+  return paths ? `; ${paths} paths per frame` : '';
 }
 
 async function main(argv: string[]): Promise<void> {
@@ -49,7 +64,7 @@ async function main(argv: string[]): Promise<void> {
   const ply = Buffer.from(bumpySpherePly(triangles));
   const file = join(mkdtempSync(join(tmpdir(), 'mesh-frames-')), `sphere-${triangles}.ply`);
   writeFileSync(file, ply);
-  const server = await serveDirectory(webRoot());
+  const server = await serveDirectory(option(argv, 'web', webRoot()));
   const browser = await launchChromium();
   try {
     const page = await browser.newPage({ viewport: { width: 1400, height: 1000 }, deviceScaleFactor: 1 });
@@ -59,8 +74,11 @@ async function main(argv: string[]): Promise<void> {
     await page.waitForFunction(() => Number(document.querySelector('[data-testid="spp"]')?.textContent) >= 2, undefined, { timeout: 120_000 });
     const res = await page.locator('#resolution').textContent();
     let t0 = await now(page);
+    let s0 = await samples(page);
     await page.waitForTimeout(seconds * 1000);
-    console.log(`seed scene at ${res}: ${await gaps(page, t0, await now(page))}`);
+    let t1 = await now(page);
+    const seedRate = ((await samples(page)) - s0) / ((t1 - t0) / 1000);
+    console.log(`seed scene at ${res}: ${await gaps(page, t0, t1)}; ${seedRate.toFixed(2)} spp/s${await pathsPerFrame(page)}`);
 
     // Paused while the model loads: the frame gaps are then the page's own
     // work for the model (decode, fit, upload), not path tracing.
@@ -70,7 +88,7 @@ async function main(argv: string[]): Promise<void> {
     // From a file on disk: a buffer would be built into a File by script in the page, blocking it.
     await page.setInputFiles('#file', file);
     await page.waitForFunction(() => document.body.dataset.meshes === 'building', undefined, { timeout: 300_000 });
-    const t1 = await now(page);
+    t1 = await now(page);
     console.log(`opening the ${(ply.length / 2 ** 20).toFixed(1)} MB PLY until its BVH build starts: ${((t1 - t0) / 1000).toFixed(1)} s; ${await gaps(page, t0, t1)}`);
     await page.waitForFunction(() => document.body.dataset.meshes !== 'building', undefined, { timeout: 600_000 });
     if ((await page.evaluate(() => document.body.dataset.meshes)) !== 'ready') throw new Error(`the BVH build failed: ${await page.getByTestId('error').textContent()}`);
@@ -85,10 +103,22 @@ async function main(argv: string[]): Promise<void> {
     await page.waitForFunction(() => Number(document.querySelector('[data-testid="spp"]')?.textContent) >= 1, undefined, { timeout: 120_000 });
     const t3 = await now(page);
     console.log(`first sample of the mesh after upload: ${((t3 - t2) / 1000).toFixed(1)} s; ${await gaps(page, t2, t3)}`);
+    s0 = await samples(page);
     await page.waitForTimeout(seconds * 1000);
     const t4 = await now(page);
-    const spp = await page.getByTestId('spp').textContent();
-    console.log(`rendering ${triangles} triangles at ${await page.locator('#resolution').textContent()}: ${await gaps(page, t3, t4)}; ${spp} spp`);
+    const s4 = await samples(page);
+    const rate = (s4 - s0) / ((t4 - t3) / 1000);
+    console.log(
+      `rendering ${triangles} triangles at ${await page.locator('#resolution').textContent()}: ${await gaps(page, t3, t4)}; ` +
+        `${s4.toFixed(2)} spp, ${rate.toFixed(3)} spp/s${await pathsPerFrame(page)}`,
+    );
+    // The floor: the same page with the render paused, so frame gaps are the
+    // page's and the machine's own (a loaded machine stalls frames too).
+    await page.click('#pause');
+    await page.waitForTimeout(1000);
+    const t5 = await now(page);
+    await page.waitForTimeout(Math.min(seconds, 10) * 1000);
+    console.log(`paused (no path tracing), for comparison: ${await gaps(page, t5, await now(page))}`);
   } finally {
     await browser.close();
     await server.close();

@@ -111,6 +111,16 @@ function showSaveStatus(status: SaveStatus, detail: string): void {
 
 // ---------------------------------------------------------------- statistics
 
+/**
+ * Sets an element's text only when it changes: every frame calls showStats,
+ * and a write, even of the same text, makes the page lay out and repaint
+ * (a frame's worth of work with a software GPU).
+ */
+function showText(id: string, text: string): void {
+  const element = $(id);
+  if (element.textContent !== text) element.textContent = text;
+}
+
 let firstPixelShown = false;
 function showStats(stats: RenderStats): void {
   if (!firstPixelShown && stats.spp > 0) {
@@ -118,12 +128,15 @@ function showStats(stats: RenderStats): void {
     firstPixelShown = true;
     document.body.dataset.firstPixelMs = performance.mark('first-pixel').startTime.toFixed(0);
   }
-  $('spp').textContent = String(stats.spp);
-  $('rate').textContent = `${stats.sppPerSecond.toFixed(stats.sppPerSecond < 10 ? 1 : 0)} spp/s`;
-  $('elapsed').textContent = `${(stats.elapsedMs / 1000).toFixed(1)} s`;
-  $('resolution').textContent = `${stats.width}×${stats.height}`;
-  $('state').textContent = stats.state === 'rendering' ? '' : stats.state;
+  showText('spp', String(stats.spp));
+  showText('rate', `${stats.sppPerSecond.toFixed(stats.sppPerSecond < 10 ? 1 : 0)} spp/s`);
+  showText('elapsed', `${(stats.elapsedMs / 1000).toFixed(1)} s`);
+  showText('resolution', `${stats.width}×${stats.height}`);
+  showText('state', stats.state === 'rendering' ? '' : stats.state);
   document.body.dataset.render = stats.state;
+  // For tests and benchmarks: the work per frame the render loop chose, and samples with the one in progress.
+  document.body.dataset.pathsPerFrame = String(Math.round(stats.pathsPerFrame));
+  document.body.dataset.samples = (stats.spp + stats.sampleProgress).toFixed(3);
 }
 
 // ---------------------------------------------------------------- denoiser

@@ -1,12 +1,18 @@
 /**
- * The progressive render loop: every animation frame adds samples, sized to
- * a frame-time budget, and shows the running mean. Samples per frame adapt:
- * from GPU timer queries (EXT_disjoint_timer_query_webgl2) when the browser
- * has them, else from the frame-to-frame time, so input and UI stay above
- * 30 fps while a fast GPU gets many samples per frame.
+ * The progressive render loop: every animation frame traces paths, as many
+ * as fit a time budget, and shows the running mean. The paths per frame
+ * adapt (pathBudget.ts) to the cost per path measured by GPU timer queries
+ * (EXT_disjoint_timer_query_webgl2) when the browser has them, else by the
+ * frame-to-frame time, so input and the UI stay responsive: a fast GPU gets
+ * many samples per frame, a slow one (or a dense mesh) a part of a sample,
+ * drawn in tiles (PathTracer.renderPaths) that count once the whole image
+ * has the sample.
  */
 import type { PathTracer } from '../render/PathTracer';
 import type { ToneMap } from '../render/toneMaps';
+import type { Material, Scene } from '../scene/types';
+import { GpuQueue, GpuTimer } from './gpuWork';
+import { PathBudget, type PathBudgetOptions } from './pathBudget';
 
 export interface ViewSettings {
   exposure: number;
@@ -23,26 +29,70 @@ export interface RenderStats {
   width: number;
   height: number;
   state: 'rendering' | 'paused' | 'done' | 'lost';
+  /** The fraction of the image that has the sample in progress (PathTracer.sampleProgress). */
+  sampleProgress: number;
+  /** Paths the loop traces per frame now (a sample is width x height paths). */
+  pathsPerFrame: number;
 }
 
-/** Keep input and the UI above 30 fps. */
-const FRAME_BUDGET_MS = 1000 / 30;
-/** GPU time per frame to aim for when it can be measured. */
-const GPU_BUDGET_MS = 14;
+/** GPU time per frame to aim at when it can be measured. */
+const GPU_BUDGET_MS = 35;
+/**
+ * Frame gap to aim at when GPU time cannot be measured: it also holds the
+ * display and the page's own work, which the loop cannot tell apart.
+ */
+const FRAME_GAP_BUDGET_MS = 40;
 const MAX_SAMPLES_PER_FRAME = 512;
 /** Paths in one draw call: keeps each draw well under a second (GPU watchdog). */
 const PATHS_PER_DRAW = 1_000_000;
+/**
+ * Paths per frame after a change that may change the cost per path a lot,
+ * until it is measured: with meshes, 4 tiles of 16x16 (~25 ms at 25 us per
+ * path, a 1M-triangle mesh on SwiftShader); without, the cost per path is
+ * bounded (a few spheres, no BVH: 0.5-2 us on SwiftShader), so 64 tiles.
+ */
+const START_PATHS_MESHES = 1024;
+const START_PATHS = 16_384;
+/** How often the first sample is shown while it fills in. */
+const PREVIEW_MS = 250;
+/** Fewest paths per frame: one tile (render/tiles.ts). */
+const MIN_PATHS = 256;
+
+/**
+ * What the cost per path depends on most, beyond the camera: meshes and
+ * where they are, objects, material kinds, the environment, bounces. The
+ * budget starts small again when it changes.
+ */
+function costKey(scene: Scene): string {
+  const kind = (m: Material) => `${m.type}${m.emission ? '+emission' : ''}`;
+  const environment = scene.environment && 'map' in scene.environment ? scene.environment.map : scene.environment !== null;
+  return JSON.stringify([
+    scene.meshes.map((m) => [m.file, m.position, m.rotation, m.scale, kind(m.material)]),
+    scene.spheres.map((s) => kind(s.material)),
+    scene.lights.length,
+    scene.ground && kind(scene.ground.material),
+    environment,
+    scene.render.maxBounces,
+  ]);
+}
 
 export class RenderLoop {
-  samplesPerFrame = 1;
   private timer: GpuTimer;
+  private readonly queue = new GpuQueue();
+  private readonly budget: PathBudget;
   private lastFrame = 0;
   private renderedLastFrame = false;
+  /** Paths traced in the last frame that rendered. */
+  private lastPaths = 0;
   private displayDirty = true;
+  private lastDisplay = 0;
+  /** Samples (complete plus the fraction in progress) at the end of the last frame. */
   private lastCount = 0;
   private elapsedMs = 0;
   private history: { time: number; spp: number }[] = [];
   private frameHandle = 0;
+  private costScene: Scene | null = null;
+  private costKey = '';
 
   constructor(
     private readonly tracer: PathTracer,
@@ -52,11 +102,22 @@ export class RenderLoop {
     private readonly onStats: (stats: RenderStats) => void,
   ) {
     this.timer = new GpuTimer(tracer.gl);
-    tracer.on('contextlost', () => this.timer.reset());
+    this.budget = new PathBudget(this.budgetOptions());
+    tracer.pathsPerDraw = PATHS_PER_DRAW;
+    tracer.on('contextlost', () => {
+      this.timer.reset();
+      this.queue.reset();
+    });
     tracer.on('contextrestored', () => {
       this.timer = new GpuTimer(tracer.gl);
+      this.budget.restart();
       this.displayDirty = true;
     });
+  }
+
+  /** Paths traced per frame now (for statistics and tests). */
+  get pathsPerFrame(): number {
+    return this.budget.paths;
   }
 
   start(): void {
@@ -82,37 +143,75 @@ export class RenderLoop {
     this.lastFrame = now;
     this.beforeFrame();
     const tracer = this.tracer;
-    if (tracer.sampleCount < this.lastCount || tracer.sampleCount === 0) this.restartClock();
+    const count = tracer.sampleCount + tracer.sampleProgress;
+    if (count < this.lastCount || count === 0) this.restartClock();
     const lost = tracer.contextLost;
     const working = !lost && !this.settings.paused && !this.done;
     if (working) {
       this.adapt(dt);
-      let samples = this.samplesPerFrame;
-      if (this.settings.targetSpp > 0) samples = Math.min(samples, this.settings.targetSpp - tracer.sampleCount);
-      const perDraw = Math.max(1, Math.floor(PATHS_PER_DRAW / (tracer.width * tracer.height)));
-      this.timer.measure(samples, () => tracer.render(samples, perDraw));
+      let paths = this.budget.paths;
+      if (this.settings.targetSpp > 0) paths = Math.min(paths, (this.settings.targetSpp - count) * tracer.width * tracer.height);
+      // While the GPU is predicted to be behind by a frame's work, this frame adds nothing.
+      const target = this.budgetOptions().targetMs;
+      if (this.queue.backlog(now) > target) paths = 0;
+      const before = tracer.sampleCount;
+      this.lastPaths = paths > 0 ? this.timer.measure(() => tracer.renderPaths(paths)) : 0;
+      this.queue.submitted(now, this.lastPaths * (this.budget.costPerPath ?? target / Math.max(1, this.lastPaths)));
       this.elapsedMs += this.renderedLastFrame ? dt : 0;
-      this.displayDirty = true;
+      if (tracer.sampleCount !== before || this.previewDue(now)) this.displayDirty = true;
     }
     this.renderedLastFrame = working;
     if (this.displayDirty && !lost) {
       tracer.display({ exposure: this.settings.exposure, toneMap: this.settings.toneMap });
       this.displayDirty = false;
+      this.lastDisplay = now;
     }
-    this.lastCount = tracer.sampleCount;
+    this.lastCount = tracer.sampleCount + tracer.sampleProgress;
     this.onStats(this.stats(now, lost));
   };
 
+  /**
+   * Whether to show the first sample as it fills in: every PREVIEW_MS, while
+   * it has more than PREVIEW_MS * 4 of work left (a display costs a frame's
+   * worth of work with a software GPU, the page's compositing included, and
+   * a first sample due soon is better shown whole).
+   */
+  private previewDue(now: number): boolean {
+    const tracer = this.tracer;
+    if (tracer.sampleCount > 0 || this.lastPaths === 0 || now - this.lastDisplay < PREVIEW_MS) return false;
+    const msPerPath = this.budget.costPerPath;
+    if (msPerPath === null) return true;
+    return (1 - tracer.sampleProgress) * tracer.width * tracer.height * msPerPath > PREVIEW_MS * 4;
+  }
+
+  private budgetOptions(): PathBudgetOptions {
+    const pixels = this.tracer.width * this.tracer.height;
+    const targetMs = this.timer.available ? GPU_BUDGET_MS : FRAME_GAP_BUDGET_MS;
+    const startPaths = this.tracer.currentScene.meshes.length ? START_PATHS_MESHES : START_PATHS;
+    return { targetMs, startPaths, minPaths: MIN_PATHS, maxPaths: MAX_SAMPLES_PER_FRAME * pixels };
+  }
+
   private adapt(dt: number): void {
-    const msPerSample = this.timer.poll();
-    let next = this.samplesPerFrame;
-    if (msPerSample !== null && msPerSample > 0) {
-      next = 0.6 * next + 0.4 * (GPU_BUDGET_MS / msPerSample);
-    } else if (!this.timer.available && this.renderedLastFrame && dt > 0) {
-      if (dt > FRAME_BUDGET_MS * 1.15) next = next * 0.7;
-      else if (dt < 1000 / 50) next = next * 1.25 + 1;
+    const scene = this.tracer.currentScene;
+    this.budget.setOptions(this.budgetOptions());
+    let changed = false;
+    if (scene !== this.costScene) {
+      this.costScene = scene;
+      const key = costKey(scene);
+      changed = key !== this.costKey;
+      if (changed && this.costKey) this.budget.restart();
+      this.costKey = key;
     }
-    this.samplesPerFrame = Math.max(1, Math.min(MAX_SAMPLES_PER_FRAME, Math.floor(next)));
+    if (changed) {
+      this.timer.discard(); // measurements of the old scene
+      return;
+    }
+    if (this.timer.available) {
+      for (const m of this.timer.poll()) this.budget.observe(m.ms, m.paths);
+    } else if (this.renderedLastFrame && dt > 0) {
+      this.budget.observe(dt, this.lastPaths);
+    }
+    if (this.renderedLastFrame && dt > 0) this.budget.observeGap(dt, this.lastPaths);
   }
 
   private restartClock(): void {
@@ -123,55 +222,15 @@ export class RenderLoop {
 
   private stats(now: number, lost: boolean): RenderStats {
     const spp = this.tracer.sampleCount;
-    this.history.push({ time: now, spp });
+    // The rate counts the sample in progress: a slow one is a steady fraction per frame, not a jump now and then.
+    this.history.push({ time: now, spp: spp + this.tracer.sampleProgress });
     while (this.history.length > 2 && now - this.history[0].time > 1500) this.history.shift();
     const first = this.history[0];
     const span = now - first.time;
-    const sppPerSecond = span > 0 && this.renderedLastFrame ? ((spp - first.spp) * 1000) / span : 0;
+    const sppPerSecond = span > 0 && this.renderedLastFrame ? ((this.history[this.history.length - 1].spp - first.spp) * 1000) / span : 0;
     const state = lost ? 'lost' : this.done ? 'done' : this.settings.paused ? 'paused' : 'rendering';
-    return { spp, sppPerSecond, elapsedMs: this.elapsedMs, width: this.tracer.width, height: this.tracer.height, state };
-  }
-}
-
-/** GPU time of the render calls, read back a few frames later without stalling. */
-class GpuTimer {
-  private readonly ext: { TIME_ELAPSED_EXT: number; GPU_DISJOINT_EXT: number } | null;
-  private pending: { query: WebGLQuery; samples: number }[] = [];
-
-  constructor(private readonly gl: WebGL2RenderingContext) {
-    this.ext = gl.getExtension('EXT_disjoint_timer_query_webgl2');
-  }
-
-  get available(): boolean {
-    return this.ext !== null;
-  }
-
-  measure(samples: number, work: () => void): void {
-    const gl = this.gl;
-    const query = this.ext && this.pending.length < 4 ? gl.createQuery() : null;
-    if (!query || !this.ext) {
-      work();
-      return;
-    }
-    gl.beginQuery(this.ext.TIME_ELAPSED_EXT, query);
-    work();
-    gl.endQuery(this.ext.TIME_ELAPSED_EXT);
-    this.pending.push({ query, samples });
-  }
-
-  /** Milliseconds per sample per pixel of the oldest finished measurement, or null. */
-  poll(): number | null {
-    const gl = this.gl;
-    const oldest = this.pending[0];
-    if (!this.ext || !oldest || !gl.getQueryParameter(oldest.query, gl.QUERY_RESULT_AVAILABLE)) return null;
-    this.pending.shift();
-    const disjoint = gl.getParameter(this.ext.GPU_DISJOINT_EXT) as boolean;
-    const nanoseconds = gl.getQueryParameter(oldest.query, gl.QUERY_RESULT) as number;
-    gl.deleteQuery(oldest.query);
-    return disjoint ? null : nanoseconds / 1e6 / oldest.samples;
-  }
-
-  reset(): void {
-    this.pending = [];
+    const { width, height } = this.tracer;
+    const sampleProgress = this.tracer.sampleProgress;
+    return { spp, sppPerSecond, elapsedMs: this.elapsedMs, width, height, state, sampleProgress, pathsPerFrame: this.budget.paths };
   }
 }

@@ -34,8 +34,17 @@ export interface HeadlessApi {
   probe(): { webgl2: boolean; floatTargets: boolean; renderer: string };
   /** `files`: the bytes (base64) of the files the scene names, by name as written; decoded here. */
   load(scene: Scene, options: LoadOptions, files?: Record<string, string>): Promise<{ renderer: string }>;
-  /** Renders `samples` more spp in draws of `samplesPerDraw`, waits for the GPU. */
-  render(samples: number, samplesPerDraw: number): { sampleCount: number; milliseconds: number };
+  /**
+   * Renders `samples` more spp in draws of `samplesPerDraw` and at most
+   * `pathsPerDraw` paths (PathTracer.pathsPerDraw; unchanged when omitted),
+   * waits for the GPU.
+   */
+  render(samples: number, samplesPerDraw: number, pathsPerDraw?: number): { sampleCount: number; milliseconds: number };
+  /**
+   * PathTracer.renderPaths: about `paths` more paths (a part of a sample when
+   * fewer than the image's pixels); does not wait for the GPU.
+   */
+  renderPaths(paths: number): { traced: number; sampleCount: number; sampleProgress: number };
   /** Discards the accumulated samples (keeps the compiled shaders: for timing). */
   reset(): void;
   readLinear(): string;
@@ -97,12 +106,18 @@ const api: HeadlessApi = {
     loseContextExtension = tracer.gl.getExtension('WEBGL_lose_context');
     return { renderer: tracer.renderer };
   },
-  render(samples, samplesPerDraw) {
+  render(samples, samplesPerDraw, pathsPerDraw) {
     const t = requireTracer();
+    if (pathsPerDraw !== undefined) t.pathsPerDraw = pathsPerDraw;
     const start = performance.now();
     t.render(samples, samplesPerDraw);
     t.finish();
     return { sampleCount: t.sampleCount, milliseconds: performance.now() - start };
+  },
+  renderPaths(paths) {
+    const t = requireTracer();
+    const traced = t.renderPaths(paths);
+    return { traced, sampleCount: t.sampleCount, sampleProgress: t.sampleProgress };
   },
   reset() {
     requireTracer().reset();

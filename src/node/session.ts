@@ -70,7 +70,12 @@ export interface RenderSession {
    * of the files it names (by name as written; see readSceneFiles).
    */
   load(scene: Scene, options: LoadOptions, files?: Record<string, Uint8Array>): Promise<{ renderer: string }>;
-  /** Renders `samples` more samples per pixel (split into draws internally); resolves with the total. */
+  /**
+   * Renders `samples` more samples per pixel, split into draws of about
+   * DRAW_TARGET_MS (tiles of a sample when one sample is more; the first
+   * draws after load are small, until the scene's cost is measured);
+   * resolves with the total.
+   */
   render(samples: number): Promise<number>;
   /** Discards the accumulated samples; the shaders stay compiled (the benchmark times from here). */
   reset(): Promise<void>;
@@ -131,8 +136,20 @@ export async function launchChromium(options: SessionOptions = {}): Promise<Brow
   return chromium.launch({ executablePath: chromiumPath(options), ...LAUNCH_OPTIONS });
 }
 
-/** Paths per draw: ~0.4 s on SwiftShader, well under the GPU watchdog; more per draw amortizes the per-draw cost (and a sample that scatters nowhere costs less: trace.frag). */
-const SAMPLES_PER_DRAW_BUDGET = 1_000_000;
+/**
+ * Draw calls of render() aim at this long: well under a GPU watchdog
+ * (seconds), long enough that the cost of a draw itself is negligible. The
+ * paths per draw follow from the last render() call's time per path.
+ */
+const DRAW_TARGET_MS = 250;
+/**
+ * Paths per draw before a scene's cost is known (after load): about 0.4 s
+ * at 25 us per path, a 1M-triangle mesh at 512x384 on SwiftShader.
+ */
+const FIRST_PATHS_PER_DRAW = 16_384;
+/** Bounds of the paths per draw: the most is ~0.4 s on SwiftShader for simple scenes; more per draw amortizes the per-draw cost (and a sample that scatters nowhere costs less: trace.frag). */
+const MIN_PATHS_PER_DRAW = 4096;
+const MAX_PATHS_PER_DRAW = 1_000_000;
 
 export async function openRenderSession(options: SessionOptions = {}): Promise<RenderSession> {
   const root = options.webRoot ?? webRoot();
@@ -156,6 +173,7 @@ export async function openRenderSession(options: SessionOptions = {}): Promise<R
 
 function createSession(page: Page, browser: Browser, server: StaticServer, pageErrors: string[]): RenderSession {
   let pixels = 1;
+  let pathsPerDraw = FIRST_PATHS_PER_DRAW;
   // Calls window.pathtrace[method](...args) in the page (by name: the page's
   // Content-Security-Policy rightly forbids eval).
   const call = async <M extends keyof HeadlessApi>(
@@ -179,12 +197,19 @@ function createSession(page: Page, browser: Browser, server: StaticServer, pageE
     probe: () => call('probe'),
     async load(scene, options, files = {}) {
       pixels = options.width * options.height;
+      pathsPerDraw = FIRST_PATHS_PER_DRAW; // a new scene: its cost is not known yet
       const encoded = Object.fromEntries(Object.entries(files).map(([name, bytes]) => [name, Buffer.from(bytes).toString('base64')]));
       return call('load', scene, options, encoded);
     },
     async render(samples) {
-      const perDraw = Math.max(1, Math.floor(SAMPLES_PER_DRAW_BUDGET / pixels));
-      return (await call('render', samples, perDraw)).sampleCount;
+      // Whole samples per draw too, for pages built before pathsPerDraw (bench/versus.ts).
+      const perDraw = Math.max(1, Math.floor(pathsPerDraw / pixels));
+      const { sampleCount, milliseconds } = await call('render', samples, perDraw, pathsPerDraw);
+      const msPerPath = milliseconds / (samples * pixels);
+      if (samples > 0 && msPerPath > 0) {
+        pathsPerDraw = Math.round(Math.min(MAX_PATHS_PER_DRAW, Math.max(MIN_PATHS_PER_DRAW, DRAW_TARGET_MS / msPerPath)));
+      }
+      return sampleCount;
     },
     async reset() {
       await call('reset');

@@ -4,6 +4,11 @@
  *   const tracer = new PathTracer(canvas, parseScene(json));
  *   function frame() { tracer.render(1); tracer.display(); requestAnimationFrame(frame); }
  *
+ * Where one sample over the image is too long for a frame (a slow GPU, a
+ * dense mesh), renderPaths(n) advances by about n paths instead: a part of
+ * a sample, drawn in tiles (render/tiles.ts), that counts once the whole
+ * image has it. Whatever the split, the image has the same bits.
+ *
  * Scene edits (`setScene`) re-upload data and restart accumulation; they never
  * recompile shaders. A lost WebGL context is restored by itself: resources are
  * rebuilt and accumulation starts again.
@@ -17,6 +22,7 @@ import { AovPass } from './passes/aov';
 import { DisplayPass, type DisplayOptions } from './passes/display';
 import { TracePass } from './passes/trace';
 import type { SamplerKind } from './sampling';
+import { TileLayout } from './tiles';
 
 export interface PathTracerOptions {
   /** Render resolution; defaults to the scene's image size. */
@@ -44,7 +50,17 @@ export interface PathTracerOptions {
    * then renders them when called.
    */
   aovs?: boolean;
+  /**
+   * Most paths (pixels x samples per pixel) in one draw call: a sample over
+   * more pixels is drawn in tiles. Bounds how long one draw runs (a GPU
+   * watchdog resets a context whose draw runs for seconds); the `pathsPerDraw`
+   * property changes it later. Default DEFAULT_PATHS_PER_DRAW.
+   */
+  pathsPerDraw?: number;
 }
+
+/** Default PathTracerOptions.pathsPerDraw: 2^20 paths, about 0.2-1 s on SwiftShader for simple scenes. */
+export const DEFAULT_PATHS_PER_DRAW = 1 << 20;
 
 /** Most samples per pixel of the guide buffers: they converge fast (no lighting) and OIDN needs no more. */
 export const AOV_SAMPLES = 16;
@@ -74,6 +90,16 @@ interface Resources {
   shown: FloatTarget | null;
 }
 
+/**
+ * A sample being drawn in tiles: tiles [0, next) of the layout are in
+ * sums.write (sums.read plus the sample), and in the guide buffers' write
+ * pair too when `aov` (the pass adds a guide sample as well).
+ */
+interface Pass {
+  next: number;
+  aov: boolean;
+}
+
 export class PathTracer {
   readonly canvas: AnyCanvas;
   readonly gl: WebGL2RenderingContext;
@@ -89,6 +115,10 @@ export class PathTracer {
   /** Counts restarts of accumulation (scene, size, seed, reset); not a context loss. */
   private generation = 0;
   private resources: Resources | null = null;
+  private tiles: TileLayout;
+  /** The sample in progress (renderPaths), or null. */
+  private pass: Pass | null = null;
+  private maxPathsPerDraw = DEFAULT_PATHS_PER_DRAW;
   private readonly listeners = new Map<string, Set<() => void>>();
 
   constructor(canvas: AnyCanvas | undefined, scene: Scene, options: PathTracerOptions = {}) {
@@ -100,16 +130,36 @@ export class PathTracer {
     this.sampler = options.sampler ?? 'kronecker';
     this.russianRoulette = options.russianRoulette ?? false;
     this.keepAovs = options.aovs ?? false;
+    if (options.pathsPerDraw !== undefined) this.pathsPerDraw = options.pathsPerDraw;
     this.gl = createContext(this.canvas, options.preserveDrawingBuffer ?? false);
     this.canvas.addEventListener('webglcontextlost', this.onContextLost as EventListener);
     this.canvas.addEventListener('webglcontextrestored', this.onContextRestored as EventListener);
+    this.tiles = this.tileLayout();
     this.resizeCanvas();
     this.resources = this.createResources();
   }
 
-  /** Samples per pixel accumulated since the last reset. */
+  /** Samples per pixel accumulated since the last reset (complete samples: every pixel has them). */
   get sampleCount(): number {
     return this.samples;
+  }
+
+  /**
+   * Most paths (pixels x samples per pixel) in one draw call; a sample over
+   * more pixels is drawn in tiles (PathTracerOptions.pathsPerDraw).
+   */
+  get pathsPerDraw(): number {
+    return this.maxPathsPerDraw;
+  }
+
+  set pathsPerDraw(paths: number) {
+    if (!(paths >= 1)) throw new RangeError(`pathsPerDraw must be at least 1 (got ${paths})`);
+    this.maxPathsPerDraw = paths;
+  }
+
+  /** The fraction of the image that has the sample in progress (renderPaths), in [0, 1); 0 when none is. */
+  get sampleProgress(): number {
+    return this.pass ? this.pass.next / this.tiles.count : 0;
   }
 
   get width(): number {
@@ -155,6 +205,7 @@ export class PathTracer {
   setSize(width: number, height: number): void {
     if (width === this.size.width && height === this.size.height) return;
     this.size = { width: Math.max(1, Math.floor(width)), height: Math.max(1, Math.floor(height)) };
+    this.tiles = this.tileLayout();
     this.resizeCanvas();
     if (this.resources) {
       this.resources.sums.dispose();
@@ -173,6 +224,7 @@ export class PathTracer {
   /** Discards the accumulated samples. */
   reset(): void {
     this.samples = 0;
+    this.pass = null;
     this.generation++;
     this.resources?.sums.clear();
     this.resources?.aov?.clear();
@@ -191,28 +243,128 @@ export class PathTracer {
 
   /**
    * Adds `samples` samples per pixel, in draws of at most `samplesPerDraw`
-   * each (one long draw stalls the GPU and risks its watchdog). Returns the
-   * new sample count. Does nothing while the context is lost.
+   * each and at most `pathsPerDraw` paths (a sample over more pixels is drawn
+   * in tiles). A sample in progress (renderPaths) is finished first and
+   * counts as one of them. Returns the new sample count. Does nothing while
+   * the context is lost.
    */
   render(samples = 1, samplesPerDraw = samples): number {
     const r = this.resources;
     if (!r || this.gl.isContextLost()) return this.samples;
+    let left = samples;
+    if (left > 0 && this.pass) {
+      this.drawTiles(r, Infinity);
+      left -= 1;
+    }
     const perDraw = Math.max(1, Math.floor(samplesPerDraw));
-    for (let done = 0; done < samples; ) {
-      const n = Math.min(perDraw, samples - done);
-      r.trace.draw(r.sums, this.samples, n, this.seed);
-      this.samples += n;
-      done += n;
-      if (this.keepAovs) this.completeAovs(r);
+    while (left > 0) {
+      const n = Math.min(perDraw, left, this.samplesPerFullDraw());
+      if (n >= 1) {
+        this.drawSamples(r, n);
+        left -= n;
+      } else {
+        this.startPass(r);
+        this.drawTiles(r, Infinity);
+        left -= 1;
+      }
     }
     return this.samples;
   }
 
   /**
+   * Traces about `paths` paths (at least one tile of 16x16 pixels): whole
+   * samples while `paths` covers the image, else a part of the sample in
+   * progress, which counts (sampleCount, display, readLinear) once every
+   * pixel has it (sampleProgress tells how far it is). For a frame budget on
+   * a slow GPU: the image has the same bits however the paths are split.
+   * Returns the paths traced. Does nothing while the context is lost.
+   */
+  renderPaths(paths: number): number {
+    const r = this.resources;
+    if (!r || this.gl.isContextLost() || !(paths > 0)) return 0;
+    const pixels = this.size.width * this.size.height;
+    const perTile = this.tiles.pixelsPerTile;
+    let left = paths;
+    let traced = 0;
+    for (;;) {
+      if (this.pass) {
+        const wanted = Math.max(traced === 0 ? 1 : 0, Math.round(left / perTile));
+        const tiles = this.drawTiles(r, wanted);
+        if (tiles === 0) break;
+        traced += tiles * perTile;
+        left -= tiles * perTile;
+        continue;
+      }
+      // Without tiles (points too small for them: TileLayout.usable), the nearest whole number of samples, at least one.
+      const whole = this.tiles.usable ? Math.floor(left / pixels) : Math.max(traced === 0 ? 1 : 0, Math.round(left / pixels));
+      const n = Math.min(whole, this.samplesPerFullDraw());
+      if (n >= 1) {
+        this.drawSamples(r, n);
+        traced += n * pixels;
+        left -= n * pixels;
+        continue;
+      }
+      if (traced > 0 && (left < perTile / 2 || !this.tiles.usable)) break;
+      this.startPass(r);
+    }
+    return traced;
+  }
+
+  /** Whole samples per pixel that fit in one draw (pathsPerDraw); 0 when one sample does not (1 without tiles). */
+  private samplesPerFullDraw(): number {
+    const n = Math.floor(this.pathsPerDraw / (this.size.width * this.size.height));
+    return this.tiles.usable ? n : Math.max(1, n);
+  }
+
+  /** One draw of `n` whole samples per pixel. */
+  private drawSamples(r: Resources, n: number): void {
+    r.trace.draw(r.sums, this.samples, n, this.seed);
+    r.sums.swap();
+    this.samples += n;
+    if (this.keepAovs) this.completeAovs(r);
+  }
+
+  /** Starts a sample drawn in tiles; with a guide sample too while the guides want one (keepAovs). */
+  private startPass(r: Resources): void {
+    let aov = false;
+    if (this.keepAovs) {
+      r.aov ??= new AovPass(this.gl, this.size.width, this.size.height, this.sampler);
+      aov = r.aov.samples < Math.min(this.aovSamples, this.samples + 1);
+    }
+    this.pass = { next: 0, aov };
+  }
+
+  /**
+   * Draws up to `most` more tiles of the sample in progress, in draws of at
+   * most pathsPerDraw paths; when they complete it, swaps the sums and counts
+   * the sample. Returns the tiles drawn.
+   */
+  private drawTiles(r: Resources, most: number): number {
+    const pass = this.pass!;
+    const layout = this.tiles;
+    const perDraw = Math.max(1, Math.floor(this.pathsPerDraw / layout.pixelsPerTile));
+    const end = Math.min(layout.count, pass.next + Math.max(0, most));
+    const start = pass.next;
+    while (pass.next < end) {
+      const run = { layout, first: pass.next, count: Math.min(perDraw, end - pass.next) };
+      r.trace.draw(r.sums, this.samples, 1, this.seed, run);
+      if (pass.aov) r.aov!.draw(r.trace, 1, this.seed, run);
+      pass.next += run.count;
+    }
+    if (pass.next === layout.count) {
+      r.sums.swap();
+      this.samples += 1;
+      if (pass.aov) r.aov!.commit(1);
+      this.pass = null;
+    }
+    return end - start;
+  }
+
+  /**
    * The denoiser's guides (see Aovs) for the current accumulation, over
-   * min(AOV_SAMPLES or setAovs's maxSamples, sampleCount) samples per pixel (at least 1): the
-   * samples missing are rendered now (one draw), so the guides are there
-   * whether or not render() kept them.
+   * min(AOV_SAMPLES or setAovs's maxSamples, sampleCount) samples per pixel
+   * (at least 1): the samples missing are rendered now, so the guides are
+   * there whether or not render() kept them.
    */
   readAovs(): Aovs {
     const r = this.requireResources();
@@ -223,20 +375,53 @@ export class PathTracer {
     return { albedo: mean(sums.albedo), normal: mean(sums.normal), samples: aov.samples };
   }
 
-  /** Brings the guides to min(their most samples, sampleCount) samples per pixel (at least 1). */
+  /**
+   * Brings the guides to min(their most samples, sampleCount) samples per pixel (at
+   * least 1), in draws of at most pathsPerDraw paths (tiles when one sample
+   * is more). A guide sample that a sample in progress was adding tile by
+   * tile is dropped: these draws overwrite its tiles.
+   */
   private completeAovs(r: Resources): AovPass {
-    r.aov ??= new AovPass(this.gl, this.size.width, this.size.height, this.sampler);
-    const missing = Math.min(this.aovSamples, Math.max(1, this.samples)) - r.aov.samples;
-    if (missing > 0) r.aov.draw(r.trace, missing, this.seed);
-    return r.aov;
+    const aov = (r.aov ??= new AovPass(this.gl, this.size.width, this.size.height, this.sampler));
+    if (this.pass) this.pass.aov = false;
+    let missing = Math.min(this.aovSamples, Math.max(1, this.samples)) - aov.samples;
+    const layout = this.tiles;
+    while (missing > 0) {
+      const n = Math.min(missing, this.samplesPerFullDraw());
+      if (n >= 1) {
+        aov.draw(r.trace, n, this.seed);
+        missing -= n;
+        continue;
+      }
+      const perDraw = Math.max(1, Math.floor(this.pathsPerDraw / layout.pixelsPerTile));
+      for (let first = 0; first < layout.count; first += perDraw) {
+        aov.draw(r.trace, 1, this.seed, { layout, first, count: Math.min(perDraw, layout.count - first) });
+      }
+      aov.commit(1);
+      missing -= 1;
+    }
+    return aov;
   }
 
-  /** Draws the current mean image (or the image given to showImage) to the canvas. */
+  /**
+   * Draws the current mean image to the canvas: of the complete samples
+   * only (never a mix of n and n + 1 samples). Before the first sample is
+   * complete, the part of it drawn so far (renderPaths), black elsewhere.
+   * An image given to showImage is shown instead.
+   */
   display(options: DisplayOptions = {}): void {
     const r = this.resources;
     if (!r || this.gl.isContextLost()) return;
-    const shown = this.displayed(r);
-    r.display.draw(shown.target, shown.samples, options, null, this.gl.drawingBufferWidth, this.gl.drawingBufferHeight);
+    const shown = this.shown(r);
+    r.display.draw(shown.sums, shown.samples, options, null, this.gl.drawingBufferWidth, this.gl.drawingBufferHeight);
+  }
+
+  /** What display() shows: showImage's image (as a mean of 1 sample), the complete samples, or the first sample's tiles so far. */
+  private shown(r: Resources): { sums: FloatTarget; samples: number } {
+    if (r.shown) return { sums: r.shown, samples: 1 };
+    // Both targets are cleared at a reset, so the tiles not yet drawn are black.
+    if (this.samples === 0 && this.pass) return { sums: r.sums.write, samples: 1 };
+    return { sums: r.sums.read, samples: this.samples };
   }
 
   /**
@@ -265,11 +450,6 @@ export class PathTracer {
     return !!this.resources?.shown;
   }
 
-  /** What display() and readDisplayed() show: the image given to showImage (as a mean of 1 sample), else the running sums. */
-  private displayed(r: Resources): { target: FloatTarget; samples: number } {
-    return r.shown ? { target: r.shown, samples: 1 } : { target: r.sums.read, samples: this.samples };
-  }
-
   /**
    * The mean linear radiance, RGBA float32, rows from top to bottom. Alpha is
    * the fraction of samples rejected as non-finite (0 unless something is wrong).
@@ -281,11 +461,11 @@ export class PathTracer {
     return flipRows(sums.map((v) => v * scale), this.size.width, this.size.height, 4);
   }
 
-  /** The displayed image (exposure, tone map, sRGB; the mean, or showImage's) as RGBA8, rows from top to bottom. */
+  /** The displayed image (exposure, tone map, sRGB; as display() shows it: the mean, or showImage's) as RGBA8, rows from top to bottom. */
   readDisplayed(options: DisplayOptions = {}): Uint8Array {
     const r = this.requireResources();
-    const shown = this.displayed(r);
-    return r.display.read(shown.target, shown.samples, options, this.size.width, this.size.height);
+    const shown = this.shown(r);
+    return r.display.read(shown.sums, shown.samples, options, this.size.width, this.size.height);
   }
 
   /** Blocks until the GPU has finished every queued draw (for timing). */
@@ -324,6 +504,7 @@ export class PathTracer {
     gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RGBA, gl.FLOAT, sums);
     gl.bindTexture(gl.TEXTURE_2D, null);
     this.samples = samples;
+    this.pass = null; // its tiles were added to the sums replaced
     return true;
   }
 
@@ -367,6 +548,11 @@ export class PathTracer {
     return this.resources;
   }
 
+  private tileLayout(): TileLayout {
+    const range = this.gl.getParameter(this.gl.ALIASED_POINT_SIZE_RANGE) as Float32Array | null;
+    return new TileLayout(this.size.width, this.size.height, range?.[1] ?? 1024);
+  }
+
   private resizeCanvas(): void {
     if (this.canvas.width !== this.size.width) this.canvas.width = this.size.width;
     if (this.canvas.height !== this.size.height) this.canvas.height = this.size.height;
@@ -380,6 +566,7 @@ export class PathTracer {
     event.preventDefault(); // allow the browser to restore it
     this.resources = null;  // the handles died with the context
     this.samples = 0;
+    this.pass = null;
     this.emit('contextlost');
   };
 
@@ -387,6 +574,7 @@ export class PathTracer {
     requireFloatTargets(this.gl);
     this.resources = this.createResources();
     this.samples = 0;
+    this.pass = null;
     this.emit('contextrestored');
   };
 }

@@ -49,7 +49,7 @@ export class Program {
     return this.locations.get(name)!;
   }
 
-  /** Sets uniforms by name; the GLSL type decides the call (float, int, uint, vecN, mat4). */
+  /** Sets uniforms by name; the GLSL type decides the call (float, int, uint, uvecN, vecN, mat4). */
   setUniforms(values: Record<string, UniformValue>, types: Record<string, string>): this {
     const gl = this.gl;
     for (const [name, value] of Object.entries(values)) {
@@ -59,6 +59,8 @@ export class Program {
       switch (types[name]) {
         case 'int': case 'sampler2D': gl.uniform1i(loc, v as number); break;
         case 'uint': gl.uniform1ui(loc, v as number); break;
+        case 'uvec3': gl.uniform3uiv(loc, v as ArrayLike<number> as Uint32List); break;
+        case 'uvec4': gl.uniform4uiv(loc, v as ArrayLike<number> as Uint32List); break;
         case 'float': gl.uniform1f(loc, v as number); break;
         case 'vec2': gl.uniform2fv(loc, v as ArrayLike<number> as Float32List); break;
         case 'vec3': gl.uniform3fv(loc, v as ArrayLike<number> as Float32List); break;

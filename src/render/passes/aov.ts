@@ -12,6 +12,7 @@ import type { SamplerKind } from '../sampling';
 import { assembleChunks, featureDefines, sceneDefines } from '../shaderChunks';
 import { SCENE_CHUNKS, VERTEX_CHUNKS, shaderFile } from '../shaderSources';
 import type { TracePass } from './trace';
+import { FULL_SCREEN, type TileRun } from '../tiles';
 
 const AOV_CHUNKS = [...SCENE_CHUNKS, ...assembleChunks(['camera.glsl', 'aov.frag'], shaderFile)];
 
@@ -21,6 +22,8 @@ const UNIFORM_TYPES: Record<string, string> = {
   uFirstSample: 'uint',
   uSamplesPerDraw: 'uint',
   uSeed: 'uint',
+  uTiles: 'uvec4',
+  uTileGrid: 'uvec3',
 };
 
 /** Texture units of the sums read (0 and one after the scene's units 1-6). */
@@ -106,8 +109,13 @@ export class AovPass {
     this.clear();
   }
 
-  /** Adds `samples` samples per pixel of the scene `trace` holds, numbered from `this.samples`. */
-  draw(trace: TracePass, samples: number, seed: number): void {
+  /**
+   * Adds `samples` samples per pixel of the scene `trace` holds, numbered
+   * from `this.samples`: over the whole image, at once; or (`tiles`) over a
+   * run of tiles of a pass, which counts when the caller commits it, once
+   * every tile is drawn.
+   */
+  draw(trace: TracePass, samples: number, seed: number, tiles: TileRun | null = null): void {
     const gl = this.gl;
     const program = this.programFor(trace.features);
     trace.bindScene(program);
@@ -118,6 +126,7 @@ export class AovPass {
         uFirstSample: this.samples,
         uSamplesPerDraw: samples,
         uSeed: seed >>> 0,
+        ...(tiles ? tiles.layout.uniforms(tiles) : FULL_SCREEN),
       },
       UNIFORM_TYPES,
     );
@@ -128,13 +137,19 @@ export class AovPass {
     gl.bindTexture(gl.TEXTURE_2D, read.albedo.texture);
     gl.bindFramebuffer(gl.FRAMEBUFFER, write.framebuffer);
     gl.viewport(0, 0, write.albedo.width, write.albedo.height);
-    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    if (tiles) gl.drawArrays(gl.POINTS, 0, tiles.count);
+    else gl.drawArrays(gl.TRIANGLES, 0, 3);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     // No sampler keeps pointing at a target the next draw writes.
     gl.activeTexture(gl.TEXTURE0 + NORMAL_UNIT);
     gl.bindTexture(gl.TEXTURE_2D, null);
     gl.activeTexture(gl.TEXTURE0);
-    this.pairs = [write, read];
+    if (!tiles) this.commit(samples);
+  }
+
+  /** Counts a pass of `samples` samples per pixel whose tiles are all drawn (draw with tiles). */
+  commit(samples: number): void {
+    this.pairs = [this.pairs[1], this.pairs[0]];
     this.samples += samples;
   }
 

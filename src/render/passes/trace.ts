@@ -11,6 +11,7 @@ import { packScene, type SceneFeatures } from '../packScene';
 import type { SamplerKind } from '../sampling';
 import { featureDefines, sceneDefines } from '../shaderChunks';
 import { TRACE_CHUNKS, VERTEX_CHUNKS } from '../shaderSources';
+import { FULL_SCREEN, type TileRun } from '../tiles';
 
 const featureKey = (f: SceneFeatures) => JSON.stringify(f);
 
@@ -29,6 +30,8 @@ const UNIFORM_TYPES: Record<string, string> = {
   uSamplesPerDraw: 'uint',
   uSeed: 'uint',
   uSceneData: 'sampler2D',
+  uTiles: 'uvec4',
+  uTileGrid: 'uvec3',
 };
 
 const SCENE_BLOCK_BINDING = 0;
@@ -174,20 +177,26 @@ export class TracePass {
     gl.activeTexture(gl.TEXTURE0);
   }
 
-  /** One draw: adds `samples` samples per pixel, numbered from `firstSample`. */
-  draw(targets: PingPong, firstSample: number, samples: number, seed: number): void {
+  /**
+   * One draw: writes the sums read from `targets.read` plus `samples`
+   * samples per pixel, numbered from `firstSample`, into `targets.write`:
+   * over the whole image, or only over the run of tiles `tiles` (the rest of
+   * `targets.write` is left as it was). Does not swap: the caller swaps once
+   * every pixel of the pass is written.
+   */
+  draw(targets: PingPong, firstSample: number, samples: number, seed: number, tiles: TileRun | null = null): void {
     const gl = this.gl;
     this.program.use().setUniforms(
-      { uFirstSample: firstSample, uSamplesPerDraw: samples, uSeed: seed >>> 0 },
+      { uFirstSample: firstSample, uSamplesPerDraw: samples, uSeed: seed >>> 0, ...(tiles ? tiles.layout.uniforms(tiles) : FULL_SCREEN) },
       UNIFORM_TYPES,
     );
     this.bindSceneData(this.program);
     gl.bindTexture(gl.TEXTURE_2D, targets.read.texture);
     gl.bindFramebuffer(gl.FRAMEBUFFER, targets.write.framebuffer);
     gl.viewport(0, 0, targets.write.width, targets.write.height);
-    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    if (tiles) gl.drawArrays(gl.POINTS, 0, tiles.count);
+    else gl.drawArrays(gl.TRIANGLES, 0, 3);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    targets.swap();
   }
 
   dispose(): void {
