@@ -30,11 +30,11 @@ function measure(name: string, meshes: BvhMeshInput[]): void {
   const t2 = performance.now();
   const after = process.memoryUsage();
   const triangles = packed.triangleCount;
-  const textureBytes = packed.nodes.data.byteLength + packed.triangles.data.byteLength;
+  const textureBytes = packed.texture.data.byteLength;
   console.log(
     `${name}: ${triangles} triangles, ${packed.nodeCount} nodes, depth ${packed.depth}; ` +
       `build ${(t1 - t0).toFixed(0)} ms wall, ${((cpu1.user + cpu1.system) / 1000).toFixed(0)} ms CPU; pack ${(t2 - t1).toFixed(0)} ms; ` +
-      `textures ${mb(textureBytes)} (nodes ${packed.nodes.width}x${packed.nodes.height}x${packed.nodes.layers}, triangles ${packed.triangles.width}x${packed.triangles.height}x${packed.triangles.layers}); ` +
+      `texture ${mb(textureBytes)} (${packed.texture.width}x${packed.texture.height}x${packed.texture.layers}); ` +
       `heap+arrays grew ${mb(after.heapUsed + after.arrayBuffers - before.heapUsed - before.arrayBuffers)}, rss ${mb(after.rss)}`,
   );
 }

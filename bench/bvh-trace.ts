@@ -8,7 +8,7 @@ import { readFileSync } from 'node:fs';
 import { openRenderSession } from '../src/node/session';
 import { buildAndPack } from '../src/render/bvh/worker';
 import type { BvhMeshInput } from '../src/render/bvh/build';
-import type { PackedBvh } from '../src/render/bvh/pack';
+import { bvhBounds, type PackedBvh } from '../src/render/bvh/pack';
 import { decodeMesh } from '../src/scene/mesh';
 import { icosphere } from '../test/support/icosphere';
 
@@ -16,8 +16,7 @@ const b64 = (a: Float32Array) => Buffer.from(a.buffer, a.byteOffset, a.byteLengt
 
 /** width x height rays from a point in front of the bounds, through a grid covering them. */
 function primaryRays(packed: PackedBvh, width: number, height: number): Float32Array {
-  const lo = packed.nodes.data.subarray(0, 3);
-  const hi = packed.nodes.data.subarray(4, 7);
+  const [lo, hi] = bvhBounds(packed);
   const c = [0, 1, 2].map((k) => (lo[k] + hi[k]) / 2);
   const size = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
   const eye = [c[0], c[1], c[2] + 2 * size];
@@ -50,7 +49,7 @@ async function main(): Promise<void> {
       const built = await session.page.evaluate(([p, n, i]) => window.pathtraceBvh.buildInWorker(p, n, i, 0, true), [b64(mesh.positions), normals, b64(new Float32Array(mesh.indices.buffer))] as const);
       console.log(`${name}: built in the page's worker in ${built.milliseconds.toFixed(0)} ms (depth ${built.depth})`);
       for (const mode of ['closest', 'any', 'closest'] as const) {
-        const request = { nodes: '', triangles: '', rays: b64(rays), width, mode, timedDraws: 3 };
+        const request = { texture: '', rays: b64(rays), width, mode, timedDraws: 3 };
         const start = performance.now();
         const drawMs = Number(await session.page.evaluate((r) => window.pathtraceBvh.trace(r), request));
         const ms = performance.now() - start;

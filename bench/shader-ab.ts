@@ -9,10 +9,13 @@
  * page is needed (but dist/web must exist: npx vite build).
  *   npx tsx bench/shader-ab.ts --variants base=src/shaders,noShadow=src/shaders+noShadow [--scene seed] [--size 512x384] [--rounds 5] [--seconds 2] [--spp 0] [--seeds 2]
  * A variant may also be a whole trace shader (a path ending in .frag), and
- * DUMP_VARIANT=SPEC prints a variant's assembled text instead of running.
+ * DUMP_VARIANT=SPEC prints a variant's assembled text instead of running
+ * (with DUMP_FEATURES='{"HAS_MESHES":1,...}' for other feature switches than the seed scene's).
+ * The feature switches of a run are the page's own for --scene.
  */
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
+import { readSceneFiles } from '../src/node/sceneFiles';
 import { relativeMse, type LinearImage } from '../src/node/imageMetrics';
 import { openRenderSession, type LoadOptions } from '../src/node/session';
 import { assembleChunks, featureDefines, sceneDefines, TRACE_CHUNK_NAMES } from '../src/render/shaderChunks';
@@ -59,6 +62,10 @@ const PATCHES: Record<string, [string | RegExp, string][]> = {
   noEmittedPdf: [['powerHeuristic(previousPdf, lightPdf(previousPosition, hit.geometry))', '1.0']],
   // Caustic guide without the fixed-point step towards the reflection point.
   noGuideStep: [['  h = normalize(normalize(x - p) + normalize(light.xyz - p));\n  p = mirror.xyz + mirror.w * h;\n', '']],
+  // Meshes: shadow rays ignore them (wrong image; cost share of any-hit traversal).
+  noMeshShadow: [['blocked = blocked || bvhAnyHit(origin, direction, tMax);', '']],
+  // Meshes: no closest-hit traversal either (wrong image: the meshes vanish).
+  noMeshHit: [['if (bvhClosestHit(origin, direction, hit.t, triangle)) {', 'if (false) {']],
   // The camera: a fixed direction per pixel.
   noCamera: [[/void generateCameraRay\(vec2 pixel, out vec3 origin, out vec3 direction\) \{/,
     'void generateCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) { origin = uCameraPosition; direction = normalize(vec3(pixel / uResolution - 0.5, -1.0)); return; }\nvoid unusedCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) {']],
@@ -74,14 +81,17 @@ function option(argv: string[], name: string, fallback: string): string {
 const median = (v: number[]) => [...v].sort((a, b) => a - b)[Math.floor(v.length / 2)];
 const mean = (v: number[]) => v.reduce((a, b) => a + b, 0) / v.length;
 
-function variantSource(spec: string, root: URL): string {
+/** Feature switches of the trace program (featureDefines' keys); default: the seed scene's. */
+type Features = Record<string, number>;
+const SEED_FEATURES: Features = featureDefines({ guides: 1, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false });
+
+function variantSource(spec: string, root: URL, features: Features = SEED_FEATURES): string {
   if (spec.endsWith('.frag')) return readFileSync(spec, 'utf8'); // a whole trace shader, e.g. a hand-edited dump
   const [dir, ...patches] = spec.split('+');
   const base = new URL(dir.endsWith('/') ? dir : `${dir}/`, root);
   // The generated chunks come from this build; every other chunk from the variant's directory.
   const chunks = assembleChunks(TRACE_CHUNK_NAMES, (name) => readFileSync(new URL(name, base), 'utf8'));
-  // One caustic guide, no glass: the seed scene's program.
-  const defines = { ...sceneDefines(), ...featureDefines({ guides: 1, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false }) };
+  const defines = { ...sceneDefines(), ...features };
   let text = buildShader(chunks, defines).text;
   for (const p of patches) {
     const edits = PATCHES[p];
@@ -97,17 +107,15 @@ function variantSource(spec: string, root: URL): string {
 
 async function main(argv: string[]): Promise<void> {
   const root = projectRoot();
-  const variants = option(argv, 'variants', 'base=src/shaders').split(',').map((v) => {
-    const [name, spec] = v.split('=');
-    return { name, text: variantSource(spec ?? name, spec?.startsWith('/') ? new URL('file:///') : root) };
-  });
   const sceneName = option(argv, 'scene', 'seed');
   const [w, h] = option(argv, 'size', '512x384').split('x').map(Number);
   const rounds = Number(option(argv, 'rounds', '5'));
   const seconds = Number(option(argv, 'seconds', '2'));
   const spp = Number(option(argv, 'spp', '0'));
   const seeds = Number(option(argv, 'seeds', '2'));
-  const scene = parseSceneText(readFileSync(new URL(`test/fixtures/scenes/${sceneName}.json`, root), 'utf8'));
+  const sceneFile = fileURLToPath(new URL(`test/fixtures/scenes/${sceneName}.json`, root));
+  const scene = parseSceneText(readFileSync(sceneFile, 'utf8'));
+  const { files } = await readSceneFiles(scene, sceneFile); // environment maps, meshes
   if (argv.includes('--bounces')) scene.render.maxBounces = Number(option(argv, 'bounces', '6'));
 
   const session = await openRenderSession();
@@ -116,13 +124,30 @@ async function main(argv: string[]): Promise<void> {
     const original = WebGL2RenderingContext.prototype.shaderSource;
     WebGL2RenderingContext.prototype.shaderSource = function (shader: WebGLShader, text: string) {
       const replacement = (window as unknown as { __traceSource?: string }).__traceSource;
-      if (replacement && text.includes('uSamplesPerDraw') && text.includes('outSum')) text = replacement;
+      const isTrace = text.includes('uSamplesPerDraw') && text.includes('outSum');
+      if (isTrace) (window as unknown as { __pageTraceSource?: string }).__pageTraceSource = text;
+      if (replacement && isTrace) text = replacement;
       return original.call(this, shader, text);
     };
   });
   await page.reload();
   await page.waitForFunction(() => document.body.dataset.ready === 'true');
   const use = (text: string) => page.evaluate((t) => ((window as unknown as { __traceSource?: string }).__traceSource = t), text);
+  // The feature switches the page compiles this scene with (its own trace program's defines).
+  await session.load(scene, { width: 16, height: 16, seed: 1 } as LoadOptions, files);
+  const pageText = await page.evaluate(() => (window as unknown as { __pageTraceSource?: string }).__pageTraceSource ?? '');
+  const features: Features = {};
+  for (const key of Object.keys(SEED_FEATURES)) {
+    const m = new RegExp(`^#define ${key} (\\d+)$`, 'm').exec(pageText);
+    if (!m) throw new Error(`the page's trace shader has no ${key}`);
+    features[key] = Number(m[1]);
+  }
+  const same = variantSource('src/shaders', root, features) === pageText;
+  console.log(`features: ${JSON.stringify(features)}; src/shaders assembled ${same ? 'equals' : 'DIFFERS FROM'} the page's trace shader`);
+  const variants = option(argv, 'variants', 'base=src/shaders').split(',').map((v) => {
+    const [name, spec] = v.split('=');
+    return { name, text: variantSource(spec ?? name, spec?.startsWith('/') ? new URL('file:///') : root, features) };
+  });
 
   try {
     const cpu = new Map<string, number[]>(variants.map((v) => [v.name, []]));
@@ -132,7 +157,7 @@ async function main(argv: string[]): Promise<void> {
       for (const v of r % 2 ? [...variants].reverse() : variants) {
         await use(v.text);
         const t0 = performance.now();
-        await session.load(scene, { width: w, height: h, seed: 1 + r } as LoadOptions);
+        await session.load(scene, { width: w, height: h, seed: 1 + r } as LoadOptions, files);
         await session.render(1);
         compile.get(v.name)!.push((performance.now() - t0) / 1000);
         const run = await renderFor(session, seconds, 0.5);
@@ -148,7 +173,7 @@ async function main(argv: string[]): Promise<void> {
         await use(v.text);
         const e: number[] = [];
         for (let seed = 1; seed <= seeds; seed++) {
-          await session.load(scene, { width: pfm.width, height: pfm.height, seed: 100 + seed } as LoadOptions);
+          await session.load(scene, { width: pfm.width, height: pfm.height, seed: 100 + seed } as LoadOptions, files);
           await session.render(spp);
           const image = { width: pfm.width, height: pfm.height, channels: 4, data: await session.readLinear() };
           e.push(relativeMse(downsample(image, 1), reference));
@@ -171,8 +196,7 @@ async function main(argv: string[]): Promise<void> {
   }
 }
 
-void fileURLToPath;
-if (process.env.DUMP_VARIANT) { console.log(variantSource(process.env.DUMP_VARIANT, projectRoot())); process.exit(0); }
+if (process.env.DUMP_VARIANT) { console.log(variantSource(process.env.DUMP_VARIANT, projectRoot(), process.env.DUMP_FEATURES ? (JSON.parse(process.env.DUMP_FEATURES) as Features) : SEED_FEATURES)); process.exit(0); }
 main(process.argv.slice(2)).catch((error) => {
   console.error(error);
   process.exit(1);

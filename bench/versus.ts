@@ -11,6 +11,8 @@
 import { readFileSync } from 'node:fs';
 import { openRenderSession, webRoot } from '../src/node/session';
 import { parseSceneText } from '../src/scene/schema';
+import { readSceneFiles } from '../src/node/sceneFiles';
+import { fileURLToPath } from 'node:url';
 import { gitRevision, projectRoot, renderFor, writeResult } from './common';
 
 function arg(name: string, fallback: string): string {
@@ -27,15 +29,16 @@ const sceneName = arg('scene', 'seed');
 const [width, height] = arg('size', '512x384').split('x').map(Number);
 const seconds = Number(arg('seconds', '6'));
 const rounds = Number(arg('rounds', '4'));
-const scenePath = sceneName.endsWith('.json') ? sceneName : new URL(`test/fixtures/scenes/${sceneName}.json`, projectRoot());
+const scenePath = sceneName.endsWith('.json') ? sceneName : fileURLToPath(new URL(`test/fixtures/scenes/${sceneName}.json`, projectRoot()));
 const scene = parseSceneText(readFileSync(scenePath, 'utf8'));
+const { files } = await readSceneFiles(scene, scenePath); // environment maps, meshes
 
 interface Rate { wall: number; cpu: number }
 
 async function pathRate(root: string): Promise<Rate> {
   const session = await openRenderSession({ webRoot: root });
   try {
-    await session.load(scene, { width, height, seed: 1 });
+    await session.load(scene, { width, height, seed: 1 }, files);
     await session.render(1); // compile and warm up outside the clock
     const run = await renderFor(session, seconds, 0.5);
     const paths = run.spp * width * height;

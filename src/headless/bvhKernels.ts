@@ -16,8 +16,7 @@ import { decodeMesh } from '../scene/mesh';
 
 export interface BvhTraceRequest {
   /** base64 of the packed texture data; empty = the BVH last built by buildInWorker (large meshes). */
-  nodes: string;
-  triangles: string;
+  texture: string;
   /** base64 Float32Array, 8 floats per ray: origin, tMax, direction, 0. */
   rays: string;
   /** Rays per row of the output (width); rays.length / 8 / width rows. */
@@ -25,6 +24,8 @@ export interface BvhTraceRequest {
   mode: 'closest' | 'any' | 'surface';
   /** Extra timed draws after the first (for bench/bvh-trace.ts): then the result is their mean time in ms, as text. */
   timedDraws?: number;
+  /** Another text of scene/bvh.glsl to trace with (bench/bvh-kernel-ab.ts compares variants). */
+  bvhSource?: string;
 }
 
 const MODES = { closest: 0, any: 1, surface: 2 } as const;
@@ -49,27 +50,32 @@ function asTexture(base64: string): LayeredTextureData {
   texture.data.set(data);
   return texture;
 }
-let context: { gl: WebGL2RenderingContext; program: Program } | null = null;
+let gl: WebGL2RenderingContext | null = null;
+const programs = new Map<string, Program>();
 
-function kernelContext() {
-  if (!context) {
-    const gl = createContext(new OffscreenCanvas(1, 1), false);
-    const program = new Program(
+/** The context, and the kernel program for a text of bvh.glsl (default: the built one). */
+function kernelContext(source = bvhGlsl) {
+  if (!gl) {
+    gl = createContext(new OffscreenCanvas(1, 1), false);
+    gl.bindVertexArray(gl.createVertexArray());
+  }
+  let program = programs.get(source);
+  if (!program) {
+    program = new Program(
       gl,
       [{ name: 'fullscreen.vert', source: fullscreenVert }],
-      [{ name: 'scene/bvh.glsl', source: bvhGlsl }, { name: 'test/bvh_kernels.frag', source: kernelFrag }],
+      [{ name: 'scene/bvh.glsl', source }, { name: 'test/bvh_kernels.frag', source: kernelFrag }],
       { ...bvhDefines(), HAS_MESHES: 1 },
     );
-    gl.bindVertexArray(gl.createVertexArray());
-    context = { gl, program };
+    programs.set(source, program);
   }
-  return context;
+  return { gl, program };
 }
 
 /** Traces the request's rays; returns RGBA float32 per ray (closest: triangle, t, b1, b2; any: hit; surface: shading normal, material). */
 export function traceBvh(request: BvhTraceRequest): string {
-  const { gl, program } = kernelContext();
-  const packed = request.nodes === '' && lastBuilt ? lastBuilt : ({ nodes: asTexture(request.nodes), triangles: asTexture(request.triangles) } as PackedBvh);
+  const { gl, program } = kernelContext(request.bvhSource);
+  const packed = request.texture === '' && lastBuilt ? lastBuilt : ({ texture: asTexture(request.texture) } as PackedBvh);
   const rayCount = fromBase64(request.rays).length / 8;
   const rows = Math.ceil(rayCount / request.width);
   const textures = new BvhTextures(gl, packed);
@@ -77,7 +83,7 @@ export function traceBvh(request: BvhTraceRequest): string {
   const target = new FloatTarget(gl, request.width, rows);
   try {
     program.use();
-    textures.bind(program, { nodes: 0, triangles: 1 });
+    textures.bind(program, 0);
     gl.activeTexture(gl.TEXTURE2);
     gl.bindTexture(gl.TEXTURE_2D_ARRAY, rays);
     program.setUniforms({ uRays: 2, uMode: MODES[request.mode], uGridWidth: request.width }, { uRays: 'int', uMode: 'int', uGridWidth: 'int' });
@@ -104,16 +110,16 @@ export function traceBvh(request: BvhTraceRequest): string {
   }
 }
 
-/** Builds a BVH in the page's worker over one mesh (base64 Float32 positions and normals or null, Uint32 indices); returns the packed nodes and triangles (base64). */
-export async function buildInWorker(positions: string, normals: string | null, indices: string, material: number, summaryOnly = false): Promise<{ nodes: string; triangles: string; depth: number; milliseconds: number }> {
+/** Builds a BVH in the page's worker over one mesh (base64 Float32 positions and normals or null, Uint32 indices); returns the packed texture (base64). */
+export async function buildInWorker(positions: string, normals: string | null, indices: string, material: number, summaryOnly = false): Promise<{ texture: string; depth: number; milliseconds: number }> {
   const start = performance.now();
   const index = fromBase64(indices);
   const mesh = { positions: fromBase64(positions), normals: normals === null ? null : fromBase64(normals), indices: new Uint32Array(index.buffer), material };
   const packed = await buildBvhAsync([mesh]);
   lastBuilt = packed;
   const milliseconds = performance.now() - start;
-  if (summaryOnly) return { nodes: '', triangles: '', depth: packed.depth, milliseconds };
-  return { nodes: toBase64(packed.nodes.data), triangles: toBase64(packed.triangles.data), depth: packed.depth, milliseconds };
+  if (summaryOnly) return { texture: '', depth: packed.depth, milliseconds };
+  return { texture: toBase64(packed.texture.data), depth: packed.depth, milliseconds };
 }
 
 /** Decodes a mesh file in the page (base64 bytes); returns its arrays as base64, or the AssetError's message. */

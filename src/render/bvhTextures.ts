@@ -1,8 +1,8 @@
 /**
- * The packed BVH (src/render/bvh/pack.ts) as two RGBA32F 2D array textures for
- * src/shaders/scene/bvh.glsl: `uBvhNodes` and `uBvhTriangles`. Upload once
- * per scene; bind to two texture units before each draw with a program
- * that includes bvh.glsl (compiled with `bvhDefines()`).
+ * The packed BVH (src/render/bvh/pack.ts) as one RGBA32F 2D array texture for
+ * src/shaders/scene/bvh.glsl: `uBvh`. Upload once per scene; bind to a
+ * texture unit before each draw with a program that includes bvh.glsl
+ * (compiled with `bvhDefines()`).
  */
 import type { Program } from './gl/program';
 import { BVH_LAYER_ROWS, BVH_TEXTURE_WIDTH, type LayeredTextureData, type PackedBvh, type TextureData } from './bvh/pack';
@@ -14,31 +14,26 @@ export function bvhDefines(): Record<string, number> {
 }
 
 export class BvhTextures {
-  readonly nodes: WebGLTexture;
-  readonly triangles: WebGLTexture;
+  readonly texture: WebGLTexture;
 
   constructor(
     private readonly gl: WebGL2RenderingContext,
     packed: PackedBvh,
   ) {
-    this.nodes = uploadFloatTextureArray(gl, packed.nodes);
-    this.triangles = uploadFloatTextureArray(gl, packed.triangles);
+    this.texture = uploadFloatTextureArray(gl, packed.texture);
   }
 
-  /** Binds the textures to the given units and points the program's samplers at them (the program must be in use). */
-  bind(program: Program, units: { nodes: number; triangles: number }): void {
+  /** Binds the texture to the given unit and points the program's sampler at it (the program must be in use). */
+  bind(program: Program, unit: number): void {
     const gl = this.gl;
-    gl.activeTexture(gl.TEXTURE0 + units.nodes);
-    gl.bindTexture(gl.TEXTURE_2D_ARRAY, this.nodes);
-    gl.activeTexture(gl.TEXTURE0 + units.triangles);
-    gl.bindTexture(gl.TEXTURE_2D_ARRAY, this.triangles);
-    // The sampler uniforms take a unit number, as sampler2D's do.
-    program.setUniforms({ uBvhNodes: units.nodes, uBvhTriangles: units.triangles }, { uBvhNodes: 'int', uBvhTriangles: 'int' });
+    gl.activeTexture(gl.TEXTURE0 + unit);
+    gl.bindTexture(gl.TEXTURE_2D_ARRAY, this.texture);
+    // The sampler uniform takes a unit number, as sampler2D's do.
+    program.setUniforms({ uBvh: unit }, { uBvh: 'int' });
   }
 
   dispose(): void {
-    this.gl.deleteTexture(this.nodes);
-    this.gl.deleteTexture(this.triangles);
+    this.gl.deleteTexture(this.texture);
   }
 }
 

@@ -9,7 +9,7 @@
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { buildBvh, type BvhMeshInput } from '../../src/render/bvh/build';
-import { bvhBounds, packBvh, type PackedBvh } from '../../src/render/bvh/pack';
+import { bvhBounds, packBvh, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
 import { buildAndPack } from '../../src/render/bvh/worker';
 import { bruteForce, traverseBvh, type Vec3 } from '../../src/render/bvh/traverse';
 import { transformMesh } from '../../src/scene/mesh/transform';
@@ -22,6 +22,9 @@ import { random } from '../support/bvhScenes';
 const base64 = (data: Float32Array) => Buffer.from(data.buffer, data.byteOffset, data.byteLength).toString('base64');
 
 type Ray = { origin: Vec3; dir: Vec3; tMax: number };
+
+/** Triangle j's 3 texels (12 floats: v0, material, v1, normals texel, v2, mesh). */
+const triangleData = (packed: PackedBvh, j: number) => packed.texture.data.subarray(triangleTexel(j) * 4, triangleTexel(j) * 4 + 12);
 
 /** Rays as the kernel reads them (float32), so the TypeScript side uses the same numbers. */
 function rayData(rays: Ray[]): Float32Array {
@@ -41,7 +44,7 @@ describe('GLSL BVH traversal', () => {
 
   async function trace(packed: PackedBvh, rays: Float32Array, mode: BvhTraceRequest['mode']): Promise<Float32Array> {
     const request: BvhTraceRequest = {
-      nodes: base64(packed.nodes.data), triangles: base64(packed.triangles.data),
+      texture: base64(packed.texture.data),
       rays: base64(rays), width: 64, mode,
     };
     const out = await session().page.evaluate((r) => window.pathtraceBvh.trace(r), request);
@@ -58,16 +61,15 @@ describe('GLSL BVH traversal', () => {
   /** Random rays over the bunny's bounds: half aimed at a random triangle, some with a finite tMax. */
   function randomRays(packed: PackedBvh, count: number, seed: number): Float32Array {
     const r = random(seed);
-    const tris = packed.triangles.data;
     const [lo, hi] = bvhBounds(packed);
     const rays: Ray[] = [];
     for (let i = 0; i < count; i++) {
       const origin = [0, 1, 2].map((k) => lo[k] + (r() * 3 - 1) * (hi[k] - lo[k])) as unknown as Vec3;
       let dir = [0, 1, 2].map(() => r() * 2 - 1) as unknown as Vec3;
       if (i % 2 === 0) {
-        const j = Math.floor(r() * packed.triangleCount) * 12;
+        const tris = triangleData(packed, Math.floor(r() * packed.triangleCount));
         const [b1, b2] = [r() * 0.5, r() * 0.5];
-        dir = [0, 1, 2].map((k) => tris[j + k] * (1 - b1 - b2) + tris[j + 4 + k] * b1 + tris[j + 8 + k] * b2 - origin[k]) as unknown as Vec3;
+        dir = [0, 1, 2].map((k) => tris[k] * (1 - b1 - b2) + tris[4 + k] * b1 + tris[8 + k] * b2 - origin[k]) as unknown as Vec3;
       }
       rays.push({ origin, dir, tMax: i % 5 === 0 ? r() * 0.2 : 3.4e38 });
     }
@@ -116,17 +118,18 @@ describe('GLSL BVH traversal', () => {
     const rays = randomRays(packed, 4096, 3);
     const hits = await trace(packed, rays, 'closest');
     const surfaces = await trace(packed, rays, 'surface');
-    const tris = packed.triangles.data;
+    const tex = packed.texture.data;
     let checked = 0;
     for (let i = 0; i < 4096; i++) {
       const j = hits[i * 4];
       if (j < 0) continue;
+      const tris = triangleData(packed, j);
       const [b1, b2] = [hits[i * 4 + 2], hits[i * 4 + 3]];
-      const v = (c: number, k: number) => tris[j * 12 + c * 4 + k];
-      const normalTexel = tris[j * 12 + 7];
+      const v = (c: number, k: number) => tris[c * 4 + k];
+      const normalTexel = tris[7];
       let n: number[];
       if (normalTexel >= 0) {
-        n = [0, 1, 2].map((k) => (1 - b1 - b2) * tris[normalTexel * 4 + k] + b1 * tris[(normalTexel + 1) * 4 + k] + b2 * tris[(normalTexel + 2) * 4 + k]);
+        n = [0, 1, 2].map((k) => (1 - b1 - b2) * tex[normalTexel * 4 + k] + b1 * tex[(normalTexel + 1) * 4 + k] + b2 * tex[(normalTexel + 2) * 4 + k]);
       } else {
         const e1 = [0, 1, 2].map((k) => v(1, k) - v(0, k));
         const e2 = [0, 1, 2].map((k) => v(2, k) - v(0, k));
@@ -134,7 +137,7 @@ describe('GLSL BVH traversal', () => {
       }
       const length = Math.hypot(...n);
       for (let k = 0; k < 3; k++) expect(Math.abs(surfaces[i * 4 + k] - n[k] / length)).toBeLessThan(1e-4);
-      expect(surfaces[i * 4 + 3]).toBe(tris[j * 12 + 3]);
+      expect(surfaces[i * 4 + 3]).toBe(tris[3]);
       checked++;
     }
     expect(checked).toBeGreaterThan(1500);
@@ -146,17 +149,16 @@ describe('GLSL BVH traversal', () => {
     const built = await session().page.evaluate(([p, i]) => window.pathtraceBvh.buildInWorker(p, null, i, 2), [b64(mesh.positions), b64(mesh.indices)] as const);
     const expected = buildAndPack([{ ...mesh, material: 2 }]);
     expect(built.depth).toBe(expected.depth);
-    expect(built.nodes).toBe(b64(expected.nodes.data));
-    expect(built.triangles).toBe(b64(expected.triangles.data));
+    expect(built.texture).toBe(b64(expected.texture.data));
   });
 
-  it('a 328k-triangle smooth icosphere (its triangle texture spans 2 layers): hits and normals as in TypeScript', async () => {
+  it('a 328k-triangle smooth icosphere (its texture spans 3 layers): hits and normals as in TypeScript', async () => {
     const mesh = transformMesh(icosphere(7, true), { rotation: [10, 20, 30] });
     const b64 = (a: Float32Array | Uint32Array) => Buffer.from(a.buffer, a.byteOffset, a.byteLength).toString('base64');
     const built = await session().page.evaluate(([p, n, i]) => window.pathtraceBvh.buildInWorker(p, n, i, 4, true), [b64(mesh.positions), b64(mesh.normals!), b64(mesh.indices)] as const);
     const packed = buildAndPack([{ ...mesh, material: 4 }]);
     expect(built.depth).toBe(packed.depth);
-    expect(packed.triangles.layers).toBe(2);
+    expect(packed.texture.layers).toBe(3);
     const r = random(5);
     const rays: Ray[] = [];
     for (let i = 0; i < 4096; i++) {
@@ -164,20 +166,21 @@ describe('GLSL BVH traversal', () => {
       rays.push({ origin, dir: [0, 1, 2].map((k) => (r() - 0.5) * 0.5 - origin[k]) as unknown as Vec3, tMax: 3.4e38 });
     }
     const data = rayData(rays);
-    const request = (mode: BvhTraceRequest['mode']): BvhTraceRequest => ({ nodes: '', triangles: '', rays: base64(data), width: 64, mode });
+    const request = (mode: BvhTraceRequest['mode']): BvhTraceRequest => ({ texture: '', rays: base64(data), width: 64, mode });
     const hits = await session().page.evaluate((q) => window.pathtraceBvh.trace(q), request('closest')).then(floats);
     const surfaces = await session().page.evaluate((q) => window.pathtraceBvh.trace(q), request('surface')).then(floats);
-    const tris = packed.triangles.data;
+    const tex = packed.texture.data;
     let laterLayers = 0;
     for (let i = 0; i < rays.length; i++) {
       const j = hits[i * 4];
       expect(j, `ray ${i} hits`).toBeGreaterThanOrEqual(0);
+      const tris = triangleData(packed, j);
       const expected = traverseBvh(packed, f32Ray(data, i).origin, f32Ray(data, i).dir, Infinity)!;
       expect(Math.abs(hits[i * 4 + 1] - expected.t)).toBeLessThanOrEqual(1e-4 * expected.t);
       const [b1, b2] = [hits[i * 4 + 2], hits[i * 4 + 3]];
-      const k = tris[j * 12 + 7];
+      const k = tris[7];
       if (k >= 2 ** 20) laterLayers++; // normals start in layer 0 and end in layer 1
-      const n = [0, 1, 2].map((c) => (1 - b1 - b2) * tris[k * 4 + c] + b1 * tris[(k + 1) * 4 + c] + b2 * tris[(k + 2) * 4 + c]);
+      const n = [0, 1, 2].map((c) => (1 - b1 - b2) * tex[k * 4 + c] + b1 * tex[(k + 1) * 4 + c] + b2 * tex[(k + 2) * 4 + c]);
       const length = Math.hypot(...n);
       for (let c = 0; c < 3; c++) expect(Math.abs(surfaces[i * 4 + c] - n[c] / length)).toBeLessThan(1e-4);
       expect(surfaces[i * 4 + 3]).toBe(4);
@@ -255,6 +258,6 @@ function floats(text: string): Float32Array {
 
 /** t of `ray` on triangle j alone, or null. */
 function bruteForceOne(packed: PackedBvh, j: number, ray: Ray): number | null {
-  const single = { ...packed, triangleCount: 1, triangles: { ...packed.triangles, data: packed.triangles.data.subarray(j * 12, j * 12 + 12) } };
-  return bruteForce(single, ray.origin, ray.dir, ray.tMax)?.t ?? null;
+  const hit = bruteForce(packed, ray.origin, ray.dir, ray.tMax, j);
+  return hit?.t ?? null;
 }

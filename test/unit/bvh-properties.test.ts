@@ -10,7 +10,7 @@ import { readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
 import { buildBvh, MAX_BVH_DEPTH, type BvhMeshInput } from '../../src/render/bvh/build';
-import { packBvh, type PackedBvh } from '../../src/render/bvh/pack';
+import { BVH_NODE_TEXELS, packBvh, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
 import { bruteForce, traverseBvh, type Vec3 } from '../../src/render/bvh/traverse';
 import { decodeMesh } from '../../src/scene/mesh';
 import { icosphere } from '../support/icosphere';
@@ -20,42 +20,67 @@ function build(meshes: BvhMeshInput[]): PackedBvh {
   return packBvh(buildBvh(meshes), meshes);
 }
 
-/** Walks the packed tree; returns how often each node and each triangle is reached. */
-function walk(packed: PackedBvh): { nodeVisits: Uint32Array; triangleVisits: Uint32Array; maxDepth: number } {
-  const nodes = packed.nodes.data;
-  const nodeVisits = new Uint32Array(packed.nodeCount);
+/** The children of stored node q: box (lo, hi), and a leaf's triangle range or a child node. */
+function children(packed: PackedBvh, q: number) {
+  const d = packed.texture.data;
+  const o = q * BVH_NODE_TEXELS * 4;
+  return [0, 1].map((c) => ({
+    lo: [0, 1, 2].map((k) => d[o + c * 8 + k]),
+    hi: [0, 1, 2].map((k) => d[o + c * 8 + 4 + k]),
+    ref: d[o + c * 4 + 3],
+    count: d[o + 8 + c * 4 + 3],
+  }));
+}
+
+/** Walks the packed tree; returns how often each stored node and each triangle is reached, and the deepest leaf's depth. */
+function walk(packed: PackedBvh): { nodeVisits: Map<number, number>; triangleVisits: Uint32Array; maxDepth: number } {
+  const nodeVisits = new Map<number, number>();
   const triangleVisits = new Uint32Array(packed.triangleCount);
   let maxDepth = 0;
   const stack: [number, number][] = [[0, 0]];
   while (stack.length) {
-    const [node, depth] = stack.pop()!;
-    nodeVisits[node]++;
-    maxDepth = Math.max(maxDepth, depth);
-    const a = nodes[node * 8 + 3];
-    const count = nodes[node * 8 + 7];
-    if (count > 0) for (let j = a; j < a + count; j++) triangleVisits[j]++;
-    else stack.push([node + 1, depth + 1], [a, depth + 1]);
+    const [q, depth] = stack.pop()!;
+    nodeVisits.set(q, (nodeVisits.get(q) ?? 0) + 1);
+    const [c0, c1] = children(packed, q);
+    // A root that is a leaf is stored as a node with that leaf twice.
+    const leafRoot = q === 0 && c0.count > 0 && c0.ref === c1.ref && c0.count === c1.count;
+    for (const c of leafRoot ? [c0] : [c0, c1]) {
+      if (c.count > 0) {
+        for (let j = c.ref; j < c.ref + c.count; j++) triangleVisits[j]++;
+        maxDepth = Math.max(maxDepth, leafRoot ? 0 : depth + 1);
+      } else stack.push([c.ref, depth + 1]);
+    }
   }
   return { nodeVisits, triangleVisits, maxDepth };
 }
 
+/** Every child box holds its child node's children's boxes, or its leaf's triangles; sibling leaves hold consecutive triangles. */
 function expectBoundsNested(packed: PackedBvh): void {
-  const nodes = packed.nodes.data;
-  const tris = packed.triangles.data;
-  const inside = (node: number, p: ArrayLike<number>, o: number) =>
-    [0, 1, 2].every((k) => nodes[node * 8 + k] <= p[o + k] && p[o + k] <= nodes[node * 8 + 4 + k]);
-  for (let node = 0; node < packed.nodeCount; node++) {
-    const a = nodes[node * 8 + 3];
-    const count = nodes[node * 8 + 7];
-    if (count > 0) {
-      for (let j = a; j < a + count; j++) for (let v = 0; v < 3; v++) expect(inside(node, tris, j * 12 + v * 4), `node ${node} holds triangle ${j}`).toBe(true);
-    } else {
-      for (const child of [node + 1, a]) {
-        expect(inside(node, nodes, child * 8) && inside(node, nodes, child * 8 + 4), `node ${node} holds child ${child}`).toBe(true);
+  const tex = packed.texture.data;
+  const inside = (box: { lo: number[]; hi: number[] }, p: ArrayLike<number>) => [0, 1, 2].every((k) => box.lo[k] <= p[k] && p[k] <= box.hi[k]);
+  const stack = [0];
+  while (stack.length) {
+    const q = stack.pop()!;
+    const pair = children(packed, q);
+    for (const c of pair) {
+      if (c.count > 0) {
+        for (let j = c.ref; j < c.ref + c.count; j++) {
+          for (let v = 0; v < 3; v++) {
+            const o = (triangleTexel(j) + v) * 4;
+            expect(inside(c, tex.subarray(o, o + 3)), `node ${q} holds triangle ${j}`).toBe(true);
+          }
+        }
+      } else {
+        for (const g of children(packed, c.ref)) expect(inside(c, g.lo) && inside(c, g.hi), `node ${q} holds node ${c.ref}'s children`).toBe(true);
+        stack.push(c.ref);
       }
     }
+    if (pair[0].count > 0 && pair[1].count > 0 && pair[0].ref !== pair[1].ref) expect(pair[0].ref + pair[0].count, `node ${q}: sibling leaves are consecutive`).toBe(pair[1].ref);
   }
 }
+
+/** Triangle j's 3 texels (12 floats: v0, material, v1, normals texel, v2, mesh). */
+const triangleData = (packed: PackedBvh, j: number) => packed.texture.data.subarray(triangleTexel(j) * 4, triangleTexel(j) * 4 + 12);
 
 const soupArb = fc.record({
   meshes: fc.array(fc.record({ count: fc.integer({ min: 1, max: 300 }), seed: fc.nat(), smooth: fc.boolean(), extent: fc.constantFrom(0.01, 1, 100) }), { minLength: 1, maxLength: 3 }),
@@ -74,7 +99,8 @@ describe('BVH structure', () => {
         const total = meshes.reduce((s, m) => s + m.indices.length / 3, 0);
         expect(packed.triangleCount).toBe(total);
         const { nodeVisits, triangleVisits } = walk(packed);
-        expect(nodeVisits.every((v) => v === 1)).toBe(true);
+        expect([...nodeVisits.values()].every((v) => v === 1)).toBe(true);
+        expect(nodeVisits.size).toBe(packed.nodeCount);
         expect(triangleVisits.every((v) => v === 1)).toBe(true);
         expect([...packed.triangleOrder].sort((a, b) => a - b)).toEqual(Array.from({ length: total }, (_, i) => i));
         expectBoundsNested(packed);
@@ -86,21 +112,22 @@ describe('BVH structure', () => {
   it('packs each triangle with its own vertices, material, mesh and normals', () => {
     const meshes = [triangleSoup(50, 1, 2, 7, false), triangleSoup(40, 2, 2, 3, true)];
     const packed = build(meshes);
-    const tris = packed.triangles.data;
+    const tex = packed.texture.data;
     for (let j = 0; j < packed.triangleCount; j++) {
+      const tris = triangleData(packed, j);
       const id = packed.triangleOrder[j];
       const mesh = id < 50 ? 0 : 1;
       const local = id - (mesh ? 50 : 0);
       const m = meshes[mesh];
-      expect(tris[j * 12 + 3]).toBe(m.material);
-      expect(tris[j * 12 + 11]).toBe(mesh);
+      expect(tris[3]).toBe(m.material);
+      expect(tris[11]).toBe(mesh);
       for (let c = 0; c < 3; c++) {
         const v = m.indices[local * 3 + c];
-        for (let k = 0; k < 3; k++) expect(tris[j * 12 + c * 4 + k]).toBe(m.positions[v * 3 + k]);
+        for (let k = 0; k < 3; k++) expect(tris[c * 4 + k]).toBe(m.positions[v * 3 + k]);
       }
-      const normalTexel = tris[j * 12 + 7];
+      const normalTexel = tris[7];
       if (!m.normals) expect(normalTexel).toBe(-1);
-      else for (let c = 0; c < 3; c++) for (let k = 0; k < 3; k++) expect(tris[(normalTexel + c) * 4 + k]).toBe(m.normals[m.indices[local * 3 + c] * 3 + k]);
+      else for (let c = 0; c < 3; c++) for (let k = 0; k < 3; k++) expect(tex[(normalTexel + c) * 4 + k]).toBe(m.normals[m.indices[local * 3 + c] * 3 + k]);
     }
   });
 
@@ -151,9 +178,8 @@ describe('BVH queries equal brute force', () => {
           // Half the rays aim at a random triangle's centroid, so most of them hit something.
           let dir = vec(r, 1);
           if (i % 2 === 0) {
-            const j = Math.floor(r() * packed.triangleCount) * 12;
-            const tris = packed.triangles.data;
-            dir = [0, 1, 2].map((k) => (tris[j + k] + tris[j + 4 + k] + tris[j + 8 + k]) / 3 - origin[k]) as unknown as Vec3;
+            const tris = triangleData(packed, Math.floor(r() * packed.triangleCount));
+            dir = [0, 1, 2].map((k) => (tris[k] + tris[4 + k] + tris[8 + k]) / 3 - origin[k]) as unknown as Vec3;
           }
           if (i % 10 === 1) dir = [0, 0, r() < 0.5 ? 1 : -1]; // axis-aligned: zero components
           const tMax = i % 3 === 0 ? Infinity : r() * extent * 4;
@@ -170,9 +196,9 @@ describe('BVH queries equal brute force', () => {
       const r = random(count);
       let hits = 0;
       for (let i = 0; i < 300; i++) {
-        const j = Math.floor(r() * count) * 12;
+        const tris = triangleData(packed, Math.floor(r() * count));
         const origin = vec(r, 3);
-        const target = [0, 1, 2].map((k) => (packed.triangles.data[j + k] + packed.triangles.data[j + 4 + k] + packed.triangles.data[j + 8 + k]) / 3);
+        const target = [0, 1, 2].map((k) => (tris[k] + tris[4 + k] + tris[8 + k]) / 3);
         const dir = [0, 1, 2].map((k) => target[k] - origin[k]) as unknown as Vec3;
         expectSameHits(packed, origin, dir, Infinity);
         if (traverseBvh(packed, origin, dir, Infinity)) hits++;

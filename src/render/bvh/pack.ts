@@ -1,37 +1,56 @@
 /**
- * Packs a BVH and its triangles into RGBA32F texture data for the GLSL
- * traversal (src/shaders/scene/bvh.glsl). Integers (child and triangle
+ * Packs a BVH and its triangles into one RGBA32F texture for the GLSL
+ * traversal (src/shaders/scene/bvh.glsl). Integers (node and triangle
  * indices, counts, material and mesh indices) are stored as float values:
- * exact below 2^24, which the texture size caps anyway, and no denormal bit
- * patterns for a GPU to flush.
+ * exact below 2^24, and no denormal bit patterns for a GPU to flush.
  *
- * Both are 2D array textures BVH_TEXTURE_WIDTH (2048) texels wide and
+ * One texture, so that one traversal step fetches the same 4 texels whether
+ * it visits a node or tests a triangle (SwiftShader runs every fetch of a
+ * loop body for all 4 lanes of a quad, whatever each lane does; a fetch costs
+ * as much as ~100 arithmetic operations there: bench/swiftshader-costs.ts).
+ *
+ * A 2D array texture BVH_TEXTURE_WIDTH (2048) texels wide and
  * BVH_LAYER_ROWS (512) high, as many layers as needed (a single layer only
  * as high as needed): texel i is at (i % 2048, (i / 2048) % 512, layer
  * i / 2^20), masks and shifts in the shader. WebGL2 guarantees
  * MAX_TEXTURE_SIZE >= 2048 and MAX_ARRAY_TEXTURE_LAYERS >= 256, so the layout
  * works on every WebGL2 device; short layers waste at most 16 MB of padding.
  *
- * uBvhNodes: 2 texels per node, node i at texels 2i and 2i + 1:
- *   (min.xyz, a), (max.xyz, b)
- *   interior: b = 0, a = index of the second child (the first is i + 1)
- *   leaf:     b = triangle count (>= 1), a = first triangle
- * uBvhTriangles: triangle j (in BVH order) at texels 3j .. 3j + 2:
- *   (v0.xyz, material index), (v1.xyz, normals texel or -1 when flat),
- *   (v2.xyz, mesh index); a smooth triangle's vertex normals n0, n1, n2
- *   (unit, w = 0) follow all triangles, at its normals texel .. + 2.
+ * Texels, in order:
+ *   0 .. 3                 the root node
+ *   4 + 3j .. 4 + 3j + 2   triangle j (BVH order): (v0.xyz, material index),
+ *                          (v1.xyz, normals texel or -1 when flat), (v2.xyz, mesh index)
+ *   then                   a smooth triangle's vertex normals n0, n1, n2 (unit, w = 0),
+ *                          3 texels each, at its normals texel .. + 2
+ *   then, from a multiple of 4, the other nodes: node q at texels 4q .. 4q + 3.
+ *
+ * Only interior nodes are stored (Aila and Laine 2009): a node holds both
+ * children's boxes, so visiting it tests both, and a leaf is known from its
+ * parent (no visit of its own). Node q, children c0 and c1:
+ *   4q:     (c0.min.xyz, ref0)     ref: a child node's q (count 0),
+ *   4q + 1: (c0.max.xyz, ref1)          or a leaf's first triangle j
+ *   4q + 2: (c1.min.xyz, count0)   count: a leaf's triangle count (>= 1), 0 for a node
+ *   4q + 3: (c1.max.xyz, count1)
+ * Sibling leaves hold consecutive triangles (the build partitions ranges), so
+ * hitting both is one range. A root that is a leaf (a few triangles) becomes
+ * a node whose two children are that leaf (same box, same range: each
+ * triangle is still tested once).
  *
  * Limit: texel indices are stored as floats, exact up to 2^24 = 16.7M
- * texels (16 layers): 2.79M smooth or 5.59M flat triangles in total (6 or 3
- * texels each). Memory is 96 bytes per smooth triangle (48 flat) plus about
- * 32 bytes per triangle for the nodes: ~125 MB for 1M smooth triangles.
+ * texels (16 layers): triangle indices, node indices (texel / 4) and normals
+ * texels all stay below that for the 2.79M smooth or 5.59M flat triangles
+ * MAX_TRIANGLES allows. Memory is 96 bytes per smooth triangle (48 flat) plus
+ * 64 bytes per interior node (about one per two triangles at the build's leaf
+ * sizes): ~130 MB for 1M smooth triangles.
  */
 import type { Bvh, BvhMeshInput } from './build';
 
 export const BVH_TEXTURE_WIDTH = 2048;
 export const BVH_LAYER_ROWS = 512;
-export const BVH_NODE_TEXELS = 2;
+export const BVH_NODE_TEXELS = 4;
 export const BVH_TRIANGLE_TEXELS = 3;
+/** Texel of triangle 0 (after the root node). */
+export const BVH_FIRST_TRIANGLE_TEXEL = 4;
 /** Texel indices are floats in the textures: exact below 2^24. */
 export const BVH_MAX_TEXELS = 2 ** 24;
 /** The documented total (every triangle smooth: 6 texels each). */
@@ -50,14 +69,19 @@ export interface LayeredTextureData extends TextureData {
 }
 
 export interface PackedBvh {
-  nodes: LayeredTextureData;
-  triangles: LayeredTextureData;
+  /** Nodes, triangles and normals in the layout above. */
+  texture: LayeredTextureData;
+  /** Stored (interior) nodes, the root included. */
   nodeCount: number;
   triangleCount: number;
   /** BVH triangle j -> input triangle id (meshes concatenated in input order). */
   triangleOrder: Uint32Array;
+  /** The deepest leaf's depth in the build (root = 0): the traversal stack never holds more entries. */
   depth: number;
 }
+
+/** First texel of triangle j. */
+export const triangleTexel = (j: number): number => BVH_FIRST_TRIANGLE_TEXEL + BVH_TRIANGLE_TEXELS * j;
 
 /** Storage for `texels` texels in the layout above. */
 export function bvhTexture(texels: number): LayeredTextureData {
@@ -72,30 +96,45 @@ export function packBvh(bvh: Bvh, meshes: BvhMeshInput[]): PackedBvh {
   const meshOf = new Uint32Array(meshes.length + 1); // first input triangle of each mesh
   meshes.forEach((m, i) => (meshOf[i + 1] = meshOf[i] + m.indices.length / 3));
   const smoothCount = meshes.reduce((sum, m) => sum + (m.normals ? m.indices.length / 3 : 0), 0);
-  const triangleTexels = n * BVH_TRIANGLE_TEXELS + smoothCount * 3;
-  if (triangleTexels > BVH_MAX_TEXELS) {
+  const normalsEnd = triangleTexel(n) + smoothCount * 3;
+  if (normalsEnd > BVH_MAX_TEXELS) {
     throw new Error(`${n} triangles exceed the BVH texture limit (${MAX_TRIANGLES} smooth triangles in total)`);
   }
-  const nodes = bvhTexture(bvh.nodeCount * BVH_NODE_TEXELS);
-  for (let i = 0; i < bvh.nodeCount; i++) {
-    const o = i * 8;
-    for (let k = 0; k < 3; k++) {
-      nodes.data[o + k] = bvh.nodeBounds[i * 6 + k];
-      nodes.data[o + 4 + k] = bvh.nodeBounds[i * 6 + 3 + k];
-    }
-    nodes.data[o + 3] = bvh.nodeData[i * 2];
-    nodes.data[o + 7] = bvh.nodeData[i * 2 + 1];
-  }
-  const triangles = bvhTexture(triangleTexels);
-  const out = triangles.data;
-  let normalTexel = n * BVH_TRIANGLE_TEXELS;
+  const { nodeBounds, nodeData } = bvh;
+  const isLeaf = (i: number) => nodeData[i * 2 + 1] > 0;
+  // Stored nodes: the root at q = 0, the other interior nodes (depth-first) from the first multiple of 4 texels after the normals.
+  const firstSlot = Math.ceil(normalsEnd / BVH_NODE_TEXELS);
+  const slot = new Int32Array(bvh.nodeCount).fill(-1);
+  let stored = 1;
+  slot[0] = 0;
+  for (let i = 1; i < bvh.nodeCount; i++) if (!isLeaf(i)) slot[i] = firstSlot + stored++ - 1;
+  // +1 texel: a step fetches 4 texels from a triangle's first (3 used), which may be the last one.
+  const texture = bvhTexture(Math.max(normalsEnd + 1, (stored > 1 ? firstSlot + stored - 1 : 1) * BVH_NODE_TEXELS));
+  const out = texture.data;
+
+  const writeNode = (q: number, children: [number, number]) => {
+    const o = q * BVH_NODE_TEXELS * 4;
+    children.forEach((child, c) => {
+      for (let k = 0; k < 3; k++) {
+        out[o + c * 8 + k] = nodeBounds[child * 6 + k];
+        out[o + c * 8 + 4 + k] = nodeBounds[child * 6 + 3 + k];
+      }
+      const leaf = isLeaf(child);
+      out[o + c * 4 + 3] = leaf ? nodeData[child * 2] : slot[child]; // ref0, ref1 in texels 0, 1
+      out[o + 8 + c * 4 + 3] = leaf ? nodeData[child * 2 + 1] : 0; // count0, count1 in texels 2, 3
+    });
+  };
+  if (isLeaf(0)) writeNode(0, [0, 0]);
+  for (let i = 0; i < bvh.nodeCount; i++) if (!isLeaf(i)) writeNode(slot[i], [i + 1, nodeData[i * 2]]);
+
+  let normalTexel = triangleTexel(n);
   let mesh = 0;
   for (let j = 0; j < n; j++) {
     const id = bvh.triangleOrder[j];
     mesh = findMesh(meshOf, id, mesh);
     const { positions, normals, indices, material } = meshes[mesh];
     const local = (id - meshOf[mesh]) * 3;
-    const o = j * BVH_TRIANGLE_TEXELS * 4;
+    const o = triangleTexel(j) * 4;
     for (let c = 0; c < 3; c++) {
       const v = indices[local + c];
       for (let k = 0; k < 3; k++) out[o + c * 4 + k] = positions[v * 3 + k];
@@ -106,7 +145,7 @@ export function packBvh(bvh: Bvh, meshes: BvhMeshInput[]): PackedBvh {
     out[o + 11] = mesh;
     if (normals) normalTexel += 3;
   }
-  return { nodes, triangles, nodeCount: bvh.nodeCount, triangleCount: n, triangleOrder: bvh.triangleOrder, depth: bvh.depth };
+  return { texture, nodeCount: stored, triangleCount: n, triangleOrder: bvh.triangleOrder, depth: bvh.depth };
 }
 
 /** The mesh holding input triangle `id`; starts from the last answer (ids often come in runs). */
@@ -122,8 +161,8 @@ function findMesh(meshOf: Uint32Array, id: number, guess: number): number {
   return lo;
 }
 
-/** The box around everything: the root node's (min xyz, max xyz). */
+/** The box around everything: the union of the root's children's boxes (min xyz, max xyz). */
 export function bvhBounds(packed: PackedBvh): [number[], number[]] {
-  const d = packed.nodes.data;
-  return [[d[0], d[1], d[2]], [d[4], d[5], d[6]]];
+  const d = packed.texture.data;
+  return [[0, 1, 2].map((k) => Math.min(d[k], d[8 + k])), [0, 1, 2].map((k) => Math.max(d[4 + k], d[12 + k]))];
 }

@@ -1,11 +1,11 @@
 /**
  * A TypeScript mirror of src/shaders/scene/bvh.glsl over the packed texture
- * data: the same node layout, nearest-child-first order, fixed-size stack,
- * conservative slab test and watertight ray-triangle test (Woop, Benthin and
- * Wald, JCGT 2013). Tests compare it with brute force and with the GLSL.
+ * data: the same layout, the same steps (one node or one triangle each),
+ * nearest-child-first order, fixed-size stack, conservative slab test and
+ * watertight ray-triangle test (Woop, Benthin and Wald, JCGT 2013). Tests
+ * compare it with brute force and with the GLSL.
  */
-import { BVH_TRIANGLE_TEXELS, type PackedBvh } from './pack';
-import { MAX_BVH_DEPTH } from './build';
+import { BVH_NODE_TEXELS, triangleTexel, type PackedBvh } from './pack';
 
 export type Vec3 = readonly [number, number, number];
 
@@ -40,9 +40,9 @@ export function shearRay(origin: Vec3, dir: Vec3): ShearedRay {
   return { origin, kx, ky, kz, sx: dir[kx] / dir[kz], sy: dir[ky] / dir[kz], sz: 1 / dir[kz] };
 }
 
-/** Watertight test of triangle j; a hit closer than tMax, or null. */
+/** Watertight test of triangle j (its texels in `tex`); a hit closer than tMax, or null. */
 export function intersectTriangle(tex: Float32Array, j: number, ray: ShearedRay, tMax: number): BvhHit | null {
-  const o = j * BVH_TRIANGLE_TEXELS * 4;
+  const o = triangleTexel(j) * 4;
   const { origin, kx, ky, kz, sx, sy, sz } = ray;
   // Vertex c relative to the origin, permuted and sheared: x, y across the ray, z = t along it.
   const sheared = (c: number, axis: 0 | 1 | 2): number => {
@@ -65,13 +65,13 @@ export function intersectTriangle(tex: Float32Array, j: number, ray: ShearedRay,
   return { triangle: j, t, b1: v / det, b2: w / det };
 }
 
-/** Entry distance of the ray into node's box, or Infinity when it misses before tMax. */
-export function boxEntry(nodes: Float32Array, node: number, origin: Vec3, invDir: Vec3, tMax: number): number {
+/** Entry distance of the ray into the box at floats lo .. lo + 2 and hi .. hi + 2 of `data`, or Infinity when it misses before tMax. */
+export function boxEntry(data: Float32Array, lo: number, hi: number, origin: Vec3, invDir: Vec3, tMax: number): number {
   let enter = 0;
   let exit = tMax;
   for (let k = 0; k < 3; k++) {
-    const t0 = (nodes[node * 8 + k] - origin[k]) * invDir[k];
-    const t1 = (nodes[node * 8 + 4 + k] - origin[k]) * invDir[k];
+    const t0 = (data[lo + k] - origin[k]) * invDir[k];
+    const t1 = (data[hi + k] - origin[k]) * invDir[k];
     enter = Math.max(enter, Math.min(t0, t1));
     exit = Math.min(exit, Math.max(t0, t1));
   }
@@ -83,59 +83,83 @@ export function safeInverse(dir: Vec3): Vec3 {
   return dir.map((d) => (Object.is(d, -0) || d < 0 ? -1 : 1) / Math.max(Math.abs(d), 1e-30)) as unknown as Vec3;
 }
 
-/** Closest hit (anyHit false) or the first hit found (anyHit true) before tMax; null when none. */
-export function traverseBvh(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: number, anyHit = false): BvhHit | null {
-  const nodes = packed.nodes.data;
-  const tris = packed.triangles.data;
+/** Work of one traversal (bench/bvh-stats.ts): per loop step 0 for a node, 1 for a triangle; and stack pops. */
+export interface TraceStats {
+  steps: number[];
+  pops: number;
+  hit: BvhHit | null;
+}
+
+export function traceStats(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: number, anyHit: boolean): TraceStats {
+  const stats: TraceStats = { steps: [], pops: 0, hit: null };
+  stats.hit = traverseBvh(packed, origin, dir, tMax, anyHit, stats);
+  return stats;
+}
+
+/**
+ * Closest hit (anyHit false) or the first hit found (anyHit true) before
+ * tMax; null when none. Each step tests one triangle, while a leaf's range
+ * lasts, or else visits one node: both children's boxes, a hit leaf's
+ * triangles becoming the range (both leaves: their joint range), a hit
+ * child node the next node (both: the nearer, the other pushed); with
+ * nothing left, the next node is popped.
+ */
+export function traverseBvh(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: number, anyHit = false, stats?: TraceStats): BvhHit | null {
+  const tex = packed.texture.data;
   const invDir = safeInverse(dir);
   const ray = shearRay(origin, dir);
   const stack: number[] = [];
-  const stackT: number[] = [];
   let best: BvhHit | null = null;
   let limit = tMax;
-  let node = boxEntry(nodes, 0, origin, invDir, limit) < Infinity ? 0 : -1;
-  while (node >= 0) {
-    const a = nodes[node * 8 + 3];
-    const count = nodes[node * 8 + 7];
-    let next = -1;
-    if (count > 0) {
-      for (let j = a; j < a + count; j++) {
-        const hit = intersectTriangle(tris, j, ray, limit);
-        if (hit) {
-          best = hit;
-          limit = hit.t;
-          if (anyHit) return best;
-        }
+  let node = 0;
+  let triangle = 0;
+  let end = 0; // triangles [triangle, end) pending
+  while (node >= 0 || triangle < end) {
+    if (triangle < end) {
+      stats?.steps.push(1);
+      const hit = intersectTriangle(tex, triangle, ray, limit);
+      triangle++;
+      if (hit) {
+        best = hit;
+        limit = hit.t;
+        if (anyHit) return best;
       }
     } else {
-      const left = node + 1;
-      const right = a;
-      const tl = boxEntry(nodes, left, origin, invDir, limit);
-      const tr = boxEntry(nodes, right, origin, invDir, limit);
-      if (tl < Infinity && tr < Infinity) {
-        if (stack.length >= MAX_BVH_DEPTH) throw new Error('BVH stack overflow');
-        stack.push(tl <= tr ? right : left);
-        stackT.push(Math.max(tl, tr));
-        next = tl <= tr ? left : right;
-      } else if (tl < Infinity) next = left;
-      else if (tr < Infinity) next = right;
+      stats?.steps.push(0);
+      const o = node * BVH_NODE_TEXELS * 4;
+      const t0 = boxEntry(tex, o, o + 4, origin, invDir, limit);
+      const t1 = boxEntry(tex, o + 8, o + 12, origin, invDir, limit);
+      const [ref0, ref1, count0, count1] = [tex[o + 3], tex[o + 7], tex[o + 11], tex[o + 15]];
+      const leaf0 = t0 < Infinity && count0 > 0;
+      const leaf1 = t1 < Infinity && count1 > 0;
+      const inner0 = t0 < Infinity && count0 === 0;
+      const inner1 = t1 < Infinity && count1 === 0;
+      if (leaf0 || leaf1) {
+        triangle = leaf0 ? (leaf1 ? Math.min(ref0, ref1) : ref0) : ref1;
+        end = leaf0 ? (leaf1 ? Math.max(ref0 + count0, ref1 + count1) : ref0 + count0) : ref1 + count1;
+      }
+      node = -1;
+      if (inner0 && inner1) {
+        if (stack.length >= packed.depth) throw new Error('BVH stack overflow');
+        stack.push(t0 <= t1 ? ref1 : ref0);
+        node = t0 <= t1 ? ref0 : ref1;
+      } else if (inner0) node = ref0;
+      else if (inner1) node = ref1;
     }
-    while (next < 0 && stack.length > 0) {
-      const t = stackT.pop()!;
-      const candidate = stack.pop()!;
-      if (t <= limit) next = candidate;
+    if (node < 0 && stack.length > 0) {
+      node = stack.pop()!;
+      if (stats) stats.pops++;
     }
-    node = next;
   }
   return best;
 }
 
-/** Every triangle tested: the reference for traverseBvh. */
-export function bruteForce(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: number): BvhHit | null {
+/** Every triangle tested (or only triangle `only`): the reference for traverseBvh. */
+export function bruteForce(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: number, only?: number): BvhHit | null {
   const ray = shearRay(origin, dir);
   let best: BvhHit | null = null;
-  for (let j = 0; j < packed.triangleCount; j++) {
-    const hit = intersectTriangle(packed.triangles.data, j, ray, best ? best.t : tMax);
+  for (let j = only ?? 0; j < (only === undefined ? packed.triangleCount : only + 1); j++) {
+    const hit = intersectTriangle(packed.texture.data, j, ray, best ? best.t : tMax);
     if (hit) best = hit;
   }
   return best;

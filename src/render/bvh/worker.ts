@@ -19,7 +19,7 @@ export function buildAndPack(meshes: BvhMeshInput[]): PackedBvh {
 
 /** The arrays to transfer with a packed BVH. */
 export function transferables(packed: PackedBvh): ArrayBuffer[] {
-  return [packed.nodes.data.buffer, packed.triangles.data.buffer, packed.triangleOrder.buffer] as ArrayBuffer[];
+  return [packed.texture.data.buffer, packed.triangleOrder.buffer] as ArrayBuffer[];
 }
 
 // Only when loaded as a worker (no `document`): importing this file elsewhere has no effect.

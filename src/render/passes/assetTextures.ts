@@ -18,7 +18,7 @@ import type { Program } from '../gl/program';
 
 /** Texture units (0 holds the running sums, 1 the scene data). */
 const ENVIRONMENT_UNITS = { map: 2, marginal: 3, conditional: 4 };
-const BVH_UNITS = { nodes: 5, triangles: 6 };
+const BVH_UNIT = 5;
 const EMISSIVE_UNIT = 7;
 
 /** Distributions by image: building one takes tens of milliseconds for a 2k map. */
@@ -125,7 +125,7 @@ export class AssetTextures {
   /** Binds the textures to their units for `program` (in use); leaves another unit than 0 active. */
   bind(program: Program): void {
     this.environment?.textures.bind(ENVIRONMENT_UNITS);
-    this.bvh?.textures.bind(program, BVH_UNITS);
+    this.bvh?.textures.bind(program, BVH_UNIT);
     this.bvh?.emissive?.bind(program, EMISSIVE_UNIT);
   }
 

@@ -1,20 +1,31 @@
 // Triangle BVH traversal (closest hit and any hit) and the surface at a hit.
-// Packed by src/render/bvh/pack.ts, uploaded by src/render/bvhTextures.ts.
+// Packed by src/render/bvh/pack.ts (the layout in full), uploaded by
+// src/render/bvhTextures.ts.
 //
-// uniform sampler2DArray uBvhNodes      RGBA32F, 2048 x 512 (one layer: fewer rows) x layers;
-//   texel i at (i % 2048, (i / 2048) % 512, layer i / 2^20).
-//   Node i = texels 2i, 2i+1: (min.xyz, a), (max.xyz, b).
-//   Interior: b = 0, first child i + 1, second child a. Leaf: b = triangle count, a = first triangle.
-// uniform sampler2DArray uBvhTriangles  the same layout. Triangle j = texels 3j .. 3j+2:
-//   (v0.xyz, material), (v1.xyz, normals texel or -1 if flat), (v2.xyz, mesh index);
-//   a smooth triangle's vertex normals n0 n1 n2 at its normals texel .. +2.
-// Integers are stored as exact float values.
+// uniform sampler2DArray uBvh  RGBA32F, 2048 x 512 (one layer: fewer rows) x layers;
+//   texel i at (i % 2048, (i / 2048) % 512, layer i / 2^20). Integers are exact float values.
+//   Node q (the root: q = 0) = texels 4q .. 4q + 3, its children's boxes:
+//     (c0.min.xyz, ref0), (c0.max.xyz, ref1), (c1.min.xyz, count0), (c1.max.xyz, count1);
+//     child c is a leaf of triangles ref_c .. ref_c + count_c - 1 (count_c > 0), else node ref_c.
+//   Triangle j (BVH order) = texels 4 + 3j .. 4 + 3j + 2:
+//     (v0.xyz, material), (v1.xyz, normals texel or -1 if flat), (v2.xyz, mesh index);
+//     a smooth triangle's vertex normals n0 n1 n2 at its normals texel .. +2.
 //
-// Traversal: nearest child first with a fixed stack of BVH_STACK_SIZE (the
-// build caps the depth at that), a conservative slab test, and the watertight
-// ray-triangle test of Woop, Benthin and Wald (JCGT 2013), so a ray through a
-// shared edge or vertex hits one of its triangles. Hits need 0 < t < tMax:
-// the caller offsets ray origins.
+// Traversal, shaped for SwiftShader (it runs a pixel quad's 4 lanes in lock
+// step through every fetch of the loop body, whatever each lane does, and a
+// fetch costs as much as ~100 arithmetic operations; bench/swiftshader-costs.ts):
+// each step of the one loop fetches the same 4 texels for every lane, and
+// uses them as a node (a lane with no triangle pending) or as a triangle.
+// A node step tests both children's boxes: hit leaves become the pending
+// triangle range (sibling leaves are consecutive: one range), a hit child node
+// the next node (both: the nearer, the other pushed on a fixed stack of
+// BVH_STACK_SIZE; the build caps the depth at that); with no next node, one
+// is popped. A triangle step runs the watertight ray-triangle test of Woop,
+// Benthin and Wald (JCGT 2013), so a ray through a shared edge or vertex hits
+// one of its triangles. Everything in a step is computed for both cases and
+// selected (no branches: SwiftShader executes both sides of every branch).
+// The slab test is conservative. Hits need 0 < t < tMax: the caller offsets
+// ray origins.
 
 // Compiled in only for scenes with meshes (HAS_MESHES; trace program variants).
 #if HAS_MESHES
@@ -29,11 +40,10 @@
 #define BVH_STACK_SIZE 32
 #endif
 
-uniform highp sampler2DArray uBvhNodes;
-uniform highp sampler2DArray uBvhTriangles;
+uniform highp sampler2DArray uBvh;
 
 struct BvhHit {
-  int triangle;     // BVH order; -1 when nothing was hit
+  int triangle;     // BVH order (texels 4 + 3 triangle ..); -1 when nothing was hit
   float t;
   vec2 barycentric; // weights of v1 and v2 (v0's is 1 - x - y)
 };
@@ -62,10 +72,10 @@ vec4 bvhTexel(highp sampler2DArray map, int i) {
   return texelFetch(map, ivec3(i & columns, (i >> BVH_TEXTURE_WIDTH_LOG2) & rows, i >> (BVH_TEXTURE_WIDTH_LOG2 + BVH_LAYER_ROWS_LOG2)), 0);
 }
 
-// Entry distance into node's box, or BVH_NO_HIT when the ray misses it before tMax.
-float bvhBoxEntry(int node, vec3 origin, vec3 invDir, float tMax) {
-  vec3 t0 = (bvhTexel(uBvhNodes, 2 * node).xyz - origin) * invDir;
-  vec3 t1 = (bvhTexel(uBvhNodes, 2 * node + 1).xyz - origin) * invDir;
+// Entry distance into the box (lo, hi), or BVH_NO_HIT when the ray misses it before tMax.
+float bvhBoxEntry(vec3 lo, vec3 hi, vec3 origin, vec3 invDir, float tMax) {
+  vec3 t0 = (lo - origin) * invDir;
+  vec3 t1 = (hi - origin) * invDir;
   vec3 near = min(t0, t1);
   vec3 far = max(t0, t1);
   float enter = max(max(near.x, near.y), max(near.z, 0.0));
@@ -87,54 +97,72 @@ mat3 bvhShear(vec3 dir) {
   return mat3(ex - (dot(dir, ex) / dz) * ez, ey - (dot(dir, ey) / dz) * ez, ez / dz);
 }
 
+const int BVH_FIRST_TRIANGLE_TEXEL = 4;
+
 // Closest hit before tMax (anyHit false), or the first found (anyHit true: shadow rays).
 bool bvhIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit) {
-  hit = BvhHit(-1, tMax, vec2(0.0));
   // Zero direction components become huge (same sign): no 0 * inf = NaN in the slab test.
   vec3 invDir = (vec3(greaterThanEqual(dir, vec3(0.0))) * 2.0 - 1.0) / max(abs(dir), vec3(1e-30));
   mat3 shear = bvhShear(dir);
+  float best = tMax;
+  int bestTexel = -1;
+  vec2 barycentric = vec2(0.0);
   int stack[BVH_STACK_SIZE];
-  float stackT[BVH_STACK_SIZE];
   int sp = 0;
-  int node = bvhBoxEntry(0, origin, invDir, tMax) < BVH_NO_HIT ? 0 : -1;
-  while (node >= 0) {
-    float a = bvhTexel(uBvhNodes, 2 * node).w;
-    int count = int(bvhTexel(uBvhNodes, 2 * node + 1).w);
-    int next = -1;
-    if (count > 0) {
-      for (int j = int(a); j < int(a) + count; j++) {
-        vec3 A = (bvhTexel(uBvhTriangles, 3 * j).xyz - origin) * shear;
-        vec3 B = (bvhTexel(uBvhTriangles, 3 * j + 1).xyz - origin) * shear;
-        vec3 C = (bvhTexel(uBvhTriangles, 3 * j + 2).xyz - origin) * shear;
-        vec3 e = vec3(C.x * B.y - C.y * B.x, A.x * C.y - A.y * C.x, B.x * A.y - B.y * A.x);
-        float det = e.x + e.y + e.z;
-        float t = dot(e, vec3(A.z, B.z, C.z)) / det;
-        bool inside = !(any(lessThan(e, vec3(0.0))) && any(greaterThan(e, vec3(0.0))));
-        if (inside && det != 0.0 && t > 0.0 && t < hit.t) {
-          hit = BvhHit(j, t, e.yz / det);
-          if (anyHit) return true;
-        }
-      }
-    } else {
-      int right = int(a);
-      float tl = bvhBoxEntry(node + 1, origin, invDir, hit.t);
-      float tr = bvhBoxEntry(right, origin, invDir, hit.t);
-      bool leftFirst = tl <= tr;
-      next = tl < BVH_NO_HIT ? (leftFirst ? node + 1 : right) : (tr < BVH_NO_HIT ? right : -1);
-      if (max(tl, tr) < BVH_NO_HIT) {
-        stack[sp] = leftFirst ? right : node + 1;
-        stackT[sp] = max(tl, tr);
-        sp++;
-      }
-    }
-    // Pop the nearest pending subtree still closer than the best hit.
-    while (next < 0 && sp > 0) {
-      sp--;
-      if (stackT[sp] <= hit.t) next = stack[sp];
-    }
-    node = next;
-  }
-  return hit.triangle >= 0;
+  int node = 0;                    // the next node to visit; -1: none
+  int triangle = 0, triangleEnd = 0; // pending triangles: texels triangle, + 3, .. < triangleEnd
+  do {
+    bool isTriangle = triangle < triangleEnd;
+    int texel = isTriangle ? triangle : 4 * max(node, 0);
+    vec4 t0 = bvhTexel(uBvh, texel);
+    vec4 t1 = bvhTexel(uBvh, texel + 1);
+    vec4 t2 = bvhTexel(uBvh, texel + 2);
+    vec4 t3 = bvhTexel(uBvh, texel + 3);
+
+    // As a triangle: the watertight test.
+    vec3 A = (t0.xyz - origin) * shear;
+    vec3 B = (t1.xyz - origin) * shear;
+    vec3 C = (t2.xyz - origin) * shear;
+    vec3 e = vec3(C.x * B.y - C.y * B.x, A.x * C.y - A.y * C.x, B.x * A.y - B.y * A.x);
+    float det = e.x + e.y + e.z;
+    float t = dot(e, vec3(A.z, B.z, C.z)) / det;
+    bool inside = !(any(lessThan(e, vec3(0.0))) && any(greaterThan(e, vec3(0.0))));
+    bool found = isTriangle && inside && det != 0.0 && t > 0.0 && t < best;
+    best = found ? t : best;
+    bestTexel = found ? texel : bestTexel;
+    barycentric = found ? e.yz / det : barycentric;
+    triangle += isTriangle ? 3 : 0;
+
+    // As a node: both children's boxes.
+    float enter0 = bvhBoxEntry(t0.xyz, t1.xyz, origin, invDir, best);
+    float enter1 = bvhBoxEntry(t2.xyz, t3.xyz, origin, invDir, best);
+    int ref0 = int(t0.w), ref1 = int(t1.w), count0 = int(t2.w), count1 = int(t3.w);
+    bool hit0 = !isTriangle && enter0 < BVH_NO_HIT;
+    bool hit1 = !isTriangle && enter1 < BVH_NO_HIT;
+    bool leaf0 = hit0 && count0 > 0, leaf1 = hit1 && count1 > 0;
+    bool inner0 = hit0 && count0 == 0, inner1 = hit1 && count1 == 0;
+    int first0 = BVH_FIRST_TRIANGLE_TEXEL + 3 * ref0, first1 = BVH_FIRST_TRIANGLE_TEXEL + 3 * ref1;
+    int end0 = first0 + 3 * count0, end1 = first1 + 3 * count1;
+    triangle = leaf0 ? (leaf1 ? min(first0, first1) : first0) : (leaf1 ? first1 : triangle);
+    triangleEnd = leaf0 ? (leaf1 ? max(end0, end1) : end0) : (leaf1 ? end1 : triangleEnd);
+    bool nearFirst = enter0 <= enter1;
+    stack[min(sp, BVH_STACK_SIZE - 1)] = nearFirst ? ref1 : ref0; // kept only when both are nodes
+    sp += inner0 && inner1 ? 1 : 0;
+    int next = inner0 && inner1 ? (nearFirst ? ref0 : ref1) : (inner0 ? ref0 : (inner1 ? ref1 : -1));
+    node = isTriangle ? node : next;
+
+    // Nothing to visit next: pop.
+    bool pop = node < 0 && sp > 0;
+    int top = stack[max(sp - 1, 0)];
+    node = pop ? top : node;
+    sp -= pop ? 1 : 0;
+
+    // A shadow ray is done at its first hit.
+    node = anyHit && found ? -1 : node;
+    triangleEnd = anyHit && found ? 0 : triangleEnd;
+  } while (node >= 0 || triangle < triangleEnd);
+  hit = BvhHit(bestTexel < 0 ? -1 : (bestTexel - BVH_FIRST_TRIANGLE_TEXEL) / 3, best, barycentric);
+  return bestTexel >= 0;
 }
 
 bool bvhClosestHit(vec3 origin, vec3 dir, float tMax, out BvhHit hit) {
@@ -147,9 +175,10 @@ bool bvhAnyHit(vec3 origin, vec3 dir, float tMax) {
 }
 
 BvhSurface bvhSurface(BvhHit hit) {
-  vec4 t0 = bvhTexel(uBvhTriangles, 3 * hit.triangle);
-  vec4 t1 = bvhTexel(uBvhTriangles, 3 * hit.triangle + 1);
-  vec4 t2 = bvhTexel(uBvhTriangles, 3 * hit.triangle + 2);
+  int texel = BVH_FIRST_TRIANGLE_TEXEL + 3 * hit.triangle;
+  vec4 t0 = bvhTexel(uBvh, texel);
+  vec4 t1 = bvhTexel(uBvh, texel + 1);
+  vec4 t2 = bvhTexel(uBvh, texel + 2);
   vec3 b = vec3(1.0 - hit.barycentric.x - hit.barycentric.y, hit.barycentric);
   BvhSurface s;
   s.position = b.x * t0.xyz + b.y * t1.xyz + b.z * t2.xyz;
@@ -157,7 +186,7 @@ BvhSurface bvhSurface(BvhHit hit) {
   s.shadingNormal = s.geometricNormal;
   if (t1.w >= 0.0) {
     int k = int(t1.w);
-    vec3 n = b.x * bvhTexel(uBvhTriangles, k).xyz + b.y * bvhTexel(uBvhTriangles, k + 1).xyz + b.z * bvhTexel(uBvhTriangles, k + 2).xyz;
+    vec3 n = b.x * bvhTexel(uBvh, k).xyz + b.y * bvhTexel(uBvh, k + 1).xyz + b.z * bvhTexel(uBvh, k + 2).xyz;
     // Opposite vertex normals can cancel: keep the face normal then.
     if (dot(n, n) > 1e-12) s.shadingNormal = normalize(n);
   }
