@@ -64,6 +64,8 @@ const PATCHES: Record<string, [string | RegExp, string][]> = {
   noGuideStep: [['  h = normalize(normalize(x - p) + normalize(light.xyz - p));\n  p = mirror.xyz + mirror.w * h;\n', '']],
   // Meshes: shadow rays ignore them (wrong image; cost share of any-hit traversal).
   noMeshShadow: [['blocked = blocked || bvhAnyHit(origin, direction, tMax);', '']],
+  // Meshes: shadow rays traverse the BVH with tMax 0 (one step: the cost of a call, not of its work).
+  meshShadowOneStep: [['blocked = blocked || bvhAnyHit(origin, direction, tMax);', 'blocked = blocked || bvhAnyHit(origin, direction, 0.0);']],
   // Meshes: no closest-hit traversal either (wrong image: the meshes vanish).
   noMeshHit: [['if (bvhClosestHit(origin, direction, hit.t, triangle)) {', 'if (false) {']],
   // The camera: a fixed direction per pixel.

@@ -5,12 +5,18 @@
  * (compiled with `bvhDefines()`).
  */
 import type { Program } from './gl/program';
-import { BVH_LAYER_ROWS, BVH_TEXTURE_WIDTH, type LayeredTextureData, type PackedBvh, type TextureData } from './bvh/pack';
+import { BVH_LAYER_ROWS, BVH_ROOT_NODE, BVH_ROW_TRIANGLES, BVH_TEXTURE_WIDTH, type LayeredTextureData, type PackedBvh, type TextureData } from './bvh/pack';
 import { MAX_BVH_DEPTH } from './bvh/build';
 
 /** The #defines bvh.glsl expects (its defaults equal these; pass them to keep TS and GLSL in one place). */
 export function bvhDefines(): Record<string, number> {
-  return { BVH_TEXTURE_WIDTH_LOG2: Math.log2(BVH_TEXTURE_WIDTH), BVH_LAYER_ROWS_LOG2: Math.log2(BVH_LAYER_ROWS), BVH_STACK_SIZE: MAX_BVH_DEPTH };
+  return {
+    BVH_TEXTURE_WIDTH_LOG2: Math.log2(BVH_TEXTURE_WIDTH),
+    BVH_LAYER_ROWS_LOG2: Math.log2(BVH_LAYER_ROWS),
+    BVH_STACK_SIZE: MAX_BVH_DEPTH,
+    BVH_ROW_TRIANGLES,
+    BVH_ROOT_NODE,
+  };
 }
 
 export class BvhTextures {

@@ -10,7 +10,7 @@ import { readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
 import { buildBvh, MAX_BVH_DEPTH, type BvhMeshInput } from '../../src/render/bvh/build';
-import { BVH_NODE_TEXELS, packBvh, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
+import { BVH_NODE_TEXELS, BVH_ROOT_NODE, packBvh, triangleAt, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
 import { bruteForce, traverseBvh, type Vec3 } from '../../src/render/bvh/traverse';
 import { decodeMesh } from '../../src/scene/mesh';
 import { icosphere } from '../support/icosphere';
@@ -20,16 +20,24 @@ function build(meshes: BvhMeshInput[]): PackedBvh {
   return packBvh(buildBvh(meshes), meshes);
 }
 
-/** The children of stored node q: box (lo, hi), and a leaf's triangle range or a child node. */
+/** The children of stored node q: box (lo, hi), and a leaf's triangles (first `ref`, `count`) or a child node (`ref`, count 0). */
 function children(packed: PackedBvh, q: number) {
   const d = packed.texture.data;
   const o = q * BVH_NODE_TEXELS * 4;
-  return [0, 1].map((c) => ({
-    lo: [0, 1, 2].map((k) => d[o + c * 8 + k]),
-    hi: [0, 1, 2].map((k) => d[o + c * 8 + 4 + k]),
-    ref: d[o + c * 4 + 3],
-    count: d[o + 8 + c * 4 + 3],
-  }));
+  return [0, 1].map((c) => {
+    const [ref, end] = [d[o + c * 4 + 3], d[o + 8 + c * 4 + 3]];
+    if (end > 0) {
+      // A leaf stores texels: of its first triangle and of the one after its last.
+      expect(triangleTexel(triangleAt(ref)), `node ${q}: a leaf starts at a triangle's first texel`).toBe(ref);
+      expect(triangleTexel(triangleAt(end)), `node ${q}: a leaf ends at a triangle's first texel`).toBe(end);
+    }
+    return {
+      lo: [0, 1, 2].map((k) => d[o + c * 8 + k]),
+      hi: [0, 1, 2].map((k) => d[o + c * 8 + 4 + k]),
+      ref: end > 0 ? triangleAt(ref) : ref,
+      count: end > 0 ? triangleAt(end) - triangleAt(ref) : 0,
+    };
+  });
 }
 
 /** Walks the packed tree; returns how often each stored node and each triangle is reached, and the deepest leaf's depth. */
@@ -37,13 +45,13 @@ function walk(packed: PackedBvh): { nodeVisits: Map<number, number>; triangleVis
   const nodeVisits = new Map<number, number>();
   const triangleVisits = new Uint32Array(packed.triangleCount);
   let maxDepth = 0;
-  const stack: [number, number][] = [[0, 0]];
+  const stack: [number, number][] = [[BVH_ROOT_NODE, 0]];
   while (stack.length) {
     const [q, depth] = stack.pop()!;
     nodeVisits.set(q, (nodeVisits.get(q) ?? 0) + 1);
     const [c0, c1] = children(packed, q);
     // A root that is a leaf is stored as a node with that leaf twice.
-    const leafRoot = q === 0 && c0.count > 0 && c0.ref === c1.ref && c0.count === c1.count;
+    const leafRoot = q === BVH_ROOT_NODE && c0.count > 0 && c0.ref === c1.ref && c0.count === c1.count;
     for (const c of leafRoot ? [c0] : [c0, c1]) {
       if (c.count > 0) {
         for (let j = c.ref; j < c.ref + c.count; j++) triangleVisits[j]++;
@@ -58,7 +66,7 @@ function walk(packed: PackedBvh): { nodeVisits: Map<number, number>; triangleVis
 function expectBoundsNested(packed: PackedBvh): void {
   const tex = packed.texture.data;
   const inside = (box: { lo: number[]; hi: number[] }, p: ArrayLike<number>) => [0, 1, 2].every((k) => box.lo[k] <= p[k] && p[k] <= box.hi[k]);
-  const stack = [0];
+  const stack = [BVH_ROOT_NODE];
   while (stack.length) {
     const q = stack.pop()!;
     const pair = children(packed, q);
@@ -98,6 +106,8 @@ describe('BVH structure', () => {
         const packed = build(meshes);
         const total = meshes.reduce((s, m) => s + m.indices.length / 3, 0);
         expect(packed.triangleCount).toBe(total);
+        // No 4-texel read from a triangle's first texel leaves its row; triangles precede the normals.
+        for (let j = 0; j < total; j++) expect(triangleTexel(j) % 2048).toBeLessThanOrEqual(2040);
         const { nodeVisits, triangleVisits } = walk(packed);
         expect([...nodeVisits.values()].every((v) => v === 1)).toBe(true);
         expect(nodeVisits.size).toBe(packed.nodeCount);

@@ -16,32 +16,36 @@
  * MAX_TEXTURE_SIZE >= 2048 and MAX_ARRAY_TEXTURE_LAYERS >= 256, so the layout
  * works on every WebGL2 device; short layers waste at most 16 MB of padding.
  *
+ * A step reads its 4 texels with one texel coordinate and constant offsets
+ * (texelFetchOffset: cheaper on SwiftShader than 4 addresses), so no node
+ * or triangle straddles a row: rows hold 681 triangles (2043 texels).
  * Texels, in order:
- *   0 .. 3                 the root node
- *   4 + 3j .. 4 + 3j + 2   triangle j (BVH order): (v0.xyz, material index),
+ *   rows 0 ..              triangle j (BVH order) at texel triangleTexel(j) =
+ *                          (j / 681) * 2048 + (j % 681) * 3 .. + 2: (v0.xyz, material index),
  *                          (v1.xyz, normals texel or -1 when flat), (v2.xyz, mesh index)
- *   then                   a smooth triangle's vertex normals n0, n1, n2 (unit, w = 0),
+ *   2044 .. 2047           the root node (node 511), in row 0's spare texels
+ *   from the next row      a smooth triangle's vertex normals n0, n1, n2 (unit, w = 0),
  *                          3 texels each, at its normals texel .. + 2
  *   then, from a multiple of 4, the other nodes: node q at texels 4q .. 4q + 3.
  *
  * Only interior nodes are stored (Aila and Laine 2009): a node holds both
  * children's boxes, so visiting it tests both, and a leaf is known from its
  * parent (no visit of its own). Node q, children c0 and c1:
- *   4q:     (c0.min.xyz, ref0)     ref: a child node's q (count 0),
- *   4q + 1: (c0.max.xyz, ref1)          or a leaf's first triangle j
- *   4q + 2: (c1.min.xyz, count0)   count: a leaf's triangle count (>= 1), 0 for a node
- *   4q + 3: (c1.max.xyz, count1)
+ *   4q:     (c0.min.xyz, ref0)     ref: a child node's q (end 0),
+ *   4q + 1: (c0.max.xyz, ref1)          or a leaf's first triangle's texel
+ *   4q + 2: (c1.min.xyz, end0)     end: texel of the triangle after a leaf's last (> 0), 0 for a node
+ *   4q + 3: (c1.max.xyz, end1)
  * Sibling leaves hold consecutive triangles (the build partitions ranges), so
  * hitting both is one range. A root that is a leaf (a few triangles) becomes
  * a node whose two children are that leaf (same box, same range: each
  * triangle is still tested once).
  *
  * Limit: texel indices are stored as floats, exact up to 2^24 = 16.7M
- * texels (16 layers): triangle indices, node indices (texel / 4) and normals
- * texels all stay below that for the 2.79M smooth or 5.59M flat triangles
- * MAX_TRIANGLES allows. Memory is 96 bytes per smooth triangle (48 flat) plus
- * 64 bytes per interior node (about one per two triangles at the build's leaf
- * sizes): ~130 MB for 1M smooth triangles.
+ * texels (16 layers): triangles and normals must end below that, which
+ * MAX_TRIANGLES (2.79M, every triangle smooth) ensures; nodes are referred
+ * to by node index (texel / 4). Memory is 96 bytes per smooth triangle (48
+ * flat) plus 64 bytes per interior node (about one per two triangles at the
+ * build's leaf sizes): ~130 MB for 1M smooth triangles.
  */
 import type { Bvh, BvhMeshInput } from './build';
 
@@ -49,12 +53,30 @@ export const BVH_TEXTURE_WIDTH = 2048;
 export const BVH_LAYER_ROWS = 512;
 export const BVH_NODE_TEXELS = 4;
 export const BVH_TRIANGLE_TEXELS = 3;
-/** Texel of triangle 0 (after the root node). */
-export const BVH_FIRST_TRIANGLE_TEXEL = 4;
+/** Triangles per texture row: no 4-texel read from a triangle's first texel leaves its row. */
+export const BVH_ROW_TRIANGLES = Math.floor((BVH_TEXTURE_WIDTH - 1) / BVH_TRIANGLE_TEXELS) - 1;
+/** The root node: the last 4 texels of row 0. */
+export const BVH_ROOT_NODE = BVH_TEXTURE_WIDTH / BVH_NODE_TEXELS - 1;
 /** Texel indices are floats in the textures: exact below 2^24. */
 export const BVH_MAX_TEXELS = 2 ** 24;
-/** The documented total (every triangle smooth: 6 texels each). */
-export const MAX_TRIANGLES = Math.floor(BVH_MAX_TEXELS / 6);
+
+/** First texel of triangle j. */
+export const triangleTexel = (j: number): number => Math.floor(j / BVH_ROW_TRIANGLES) * BVH_TEXTURE_WIDTH + (j % BVH_ROW_TRIANGLES) * BVH_TRIANGLE_TEXELS;
+/** The triangle whose first texel is `texel`. */
+export const triangleAt = (texel: number): number => Math.floor(texel / BVH_TEXTURE_WIDTH) * BVH_ROW_TRIANGLES + Math.floor((texel % BVH_TEXTURE_WIDTH) / BVH_TRIANGLE_TEXELS);
+/** Where the normals start: the row after the triangles'. */
+const normalsStart = (triangles: number) => Math.max(1, Math.ceil(triangles / BVH_ROW_TRIANGLES)) * BVH_TEXTURE_WIDTH;
+
+/** The documented total: the most triangles whose texels end below BVH_MAX_TEXELS when every one is smooth (3 texels, 3 of normals). */
+export const MAX_TRIANGLES = (() => {
+  let [lo, hi] = [0, Math.floor(BVH_MAX_TEXELS / 6)];
+  while (lo < hi) {
+    const mid = Math.ceil((lo + hi) / 2);
+    if (normalsStart(mid) + 3 * mid <= BVH_MAX_TEXELS) lo = mid;
+    else hi = mid - 1;
+  }
+  return lo;
+})();
 
 /** A 2D RGBA32F texture's data: width * height * 4 floats. */
 export interface TextureData {
@@ -80,9 +102,6 @@ export interface PackedBvh {
   depth: number;
 }
 
-/** First texel of triangle j. */
-export const triangleTexel = (j: number): number => BVH_FIRST_TRIANGLE_TEXEL + BVH_TRIANGLE_TEXELS * j;
-
 /** Storage for `texels` texels in the layout above. */
 export function bvhTexture(texels: number): LayeredTextureData {
   const width = BVH_TEXTURE_WIDTH;
@@ -96,20 +115,19 @@ export function packBvh(bvh: Bvh, meshes: BvhMeshInput[]): PackedBvh {
   const meshOf = new Uint32Array(meshes.length + 1); // first input triangle of each mesh
   meshes.forEach((m, i) => (meshOf[i + 1] = meshOf[i] + m.indices.length / 3));
   const smoothCount = meshes.reduce((sum, m) => sum + (m.normals ? m.indices.length / 3 : 0), 0);
-  const normalsEnd = triangleTexel(n) + smoothCount * 3;
+  const normalsEnd = normalsStart(n) + smoothCount * 3;
   if (normalsEnd > BVH_MAX_TEXELS) {
     throw new Error(`${n} triangles exceed the BVH texture limit (${MAX_TRIANGLES} smooth triangles in total)`);
   }
   const { nodeBounds, nodeData } = bvh;
   const isLeaf = (i: number) => nodeData[i * 2 + 1] > 0;
-  // Stored nodes: the root at q = 0, the other interior nodes (depth-first) from the first multiple of 4 texels after the normals.
+  // Stored nodes: the root at BVH_ROOT_NODE, the other interior nodes (depth-first) from the first multiple of 4 texels after the normals.
   const firstSlot = Math.ceil(normalsEnd / BVH_NODE_TEXELS);
   const slot = new Int32Array(bvh.nodeCount).fill(-1);
   let stored = 1;
-  slot[0] = 0;
+  slot[0] = BVH_ROOT_NODE;
   for (let i = 1; i < bvh.nodeCount; i++) if (!isLeaf(i)) slot[i] = firstSlot + stored++ - 1;
-  // +1 texel: a step fetches 4 texels from a triangle's first (3 used), which may be the last one.
-  const texture = bvhTexture(Math.max(normalsEnd + 1, (stored > 1 ? firstSlot + stored - 1 : 1) * BVH_NODE_TEXELS));
+  const texture = bvhTexture(Math.max(normalsEnd, (firstSlot + stored - 1) * BVH_NODE_TEXELS));
   const out = texture.data;
 
   const writeNode = (q: number, children: [number, number]) => {
@@ -120,14 +138,15 @@ export function packBvh(bvh: Bvh, meshes: BvhMeshInput[]): PackedBvh {
         out[o + c * 8 + 4 + k] = nodeBounds[child * 6 + 3 + k];
       }
       const leaf = isLeaf(child);
-      out[o + c * 4 + 3] = leaf ? nodeData[child * 2] : slot[child]; // ref0, ref1 in texels 0, 1
-      out[o + 8 + c * 4 + 3] = leaf ? nodeData[child * 2 + 1] : 0; // count0, count1 in texels 2, 3
+      const [first, count] = [nodeData[child * 2], nodeData[child * 2 + 1]];
+      out[o + c * 4 + 3] = leaf ? triangleTexel(first) : slot[child]; // ref0, ref1 in texels 0, 1
+      out[o + 8 + c * 4 + 3] = leaf ? triangleTexel(first + count) : 0; // end0, end1 in texels 2, 3
     });
   };
-  if (isLeaf(0)) writeNode(0, [0, 0]);
+  if (isLeaf(0)) writeNode(BVH_ROOT_NODE, [0, 0]);
   for (let i = 0; i < bvh.nodeCount; i++) if (!isLeaf(i)) writeNode(slot[i], [i + 1, nodeData[i * 2]]);
 
-  let normalTexel = triangleTexel(n);
+  let normalTexel = normalsStart(n);
   let mesh = 0;
   for (let j = 0; j < n; j++) {
     const id = bvh.triangleOrder[j];
@@ -163,6 +182,6 @@ function findMesh(meshOf: Uint32Array, id: number, guess: number): number {
 
 /** The box around everything: the union of the root's children's boxes (min xyz, max xyz). */
 export function bvhBounds(packed: PackedBvh): [number[], number[]] {
-  const d = packed.texture.data;
+  const d = packed.texture.data.subarray(BVH_ROOT_NODE * BVH_NODE_TEXELS * 4);
   return [[0, 1, 2].map((k) => Math.min(d[k], d[8 + k])), [0, 1, 2].map((k) => Math.max(d[4 + k], d[12 + k]))];
 }

@@ -5,7 +5,7 @@
  * watertight ray-triangle test (Woop, Benthin and Wald, JCGT 2013). Tests
  * compare it with brute force and with the GLSL.
  */
-import { BVH_NODE_TEXELS, triangleTexel, type PackedBvh } from './pack';
+import { BVH_NODE_TEXELS, BVH_ROOT_NODE, triangleAt, triangleTexel, type PackedBvh } from './pack';
 
 export type Vec3 = readonly [number, number, number];
 
@@ -111,7 +111,7 @@ export function traverseBvh(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: nu
   const stack: number[] = [];
   let best: BvhHit | null = null;
   let limit = tMax;
-  let node = 0;
+  let node = BVH_ROOT_NODE;
   let triangle = 0;
   let end = 0; // triangles [triangle, end) pending
   while (node >= 0 || triangle < end) {
@@ -129,14 +129,15 @@ export function traverseBvh(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: nu
       const o = node * BVH_NODE_TEXELS * 4;
       const t0 = boxEntry(tex, o, o + 4, origin, invDir, limit);
       const t1 = boxEntry(tex, o + 8, o + 12, origin, invDir, limit);
-      const [ref0, ref1, count0, count1] = [tex[o + 3], tex[o + 7], tex[o + 11], tex[o + 15]];
-      const leaf0 = t0 < Infinity && count0 > 0;
-      const leaf1 = t1 < Infinity && count1 > 0;
-      const inner0 = t0 < Infinity && count0 === 0;
-      const inner1 = t1 < Infinity && count1 === 0;
+      const [ref0, ref1, end0, end1] = [tex[o + 3], tex[o + 7], tex[o + 11], tex[o + 15]];
+      const leaf0 = t0 < Infinity && end0 > 0;
+      const leaf1 = t1 < Infinity && end1 > 0;
+      const inner0 = t0 < Infinity && end0 === 0;
+      const inner1 = t1 < Infinity && end1 === 0;
       if (leaf0 || leaf1) {
-        triangle = leaf0 ? (leaf1 ? Math.min(ref0, ref1) : ref0) : ref1;
-        end = leaf0 ? (leaf1 ? Math.max(ref0 + count0, ref1 + count1) : ref0 + count0) : ref1 + count1;
+        // Texels of the first triangle and of the one after the last; both leaves: the joint range.
+        triangle = triangleAt(leaf0 ? (leaf1 ? Math.min(ref0, ref1) : ref0) : ref1);
+        end = triangleAt(leaf0 ? (leaf1 ? Math.max(end0, end1) : end0) : end1);
       }
       node = -1;
       if (inner0 && inner1) {

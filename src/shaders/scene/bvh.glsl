@@ -4,17 +4,19 @@
 //
 // uniform sampler2DArray uBvh  RGBA32F, 2048 x 512 (one layer: fewer rows) x layers;
 //   texel i at (i % 2048, (i / 2048) % 512, layer i / 2^20). Integers are exact float values.
-//   Node q (the root: q = 0) = texels 4q .. 4q + 3, its children's boxes:
-//     (c0.min.xyz, ref0), (c0.max.xyz, ref1), (c1.min.xyz, count0), (c1.max.xyz, count1);
-//     child c is a leaf of triangles ref_c .. ref_c + count_c - 1 (count_c > 0), else node ref_c.
-//   Triangle j (BVH order) = texels 4 + 3j .. 4 + 3j + 2:
+//   Node q = texels 4q .. 4q + 3 (the root: q = BVH_ROOT_NODE), its children's boxes:
+//     (c0.min.xyz, ref0), (c0.max.xyz, ref1), (c1.min.xyz, end0), (c1.max.xyz, end1);
+//     child c is a leaf of the triangles at texels ref_c (first) .. end_c (after the last)
+//     when end_c > 0, else node ref_c.
+//   Triangle j (BVH order) = texels bvhTriangleTexel(j) .. + 2, 681 to a row (none straddles one):
 //     (v0.xyz, material), (v1.xyz, normals texel or -1 if flat), (v2.xyz, mesh index);
 //     a smooth triangle's vertex normals n0 n1 n2 at its normals texel .. +2.
 //
 // Traversal, shaped for SwiftShader (it runs a pixel quad's 4 lanes in lock
 // step through every fetch of the loop body, whatever each lane does, and a
 // fetch costs as much as ~100 arithmetic operations; bench/swiftshader-costs.ts):
-// each step of the one loop fetches the same 4 texels for every lane, and
+// each step of the one loop fetches the same 4 texels for every lane (one
+// coordinate and constant offsets: no node or triangle straddles a row), and
 // uses them as a node (a lane with no triangle pending) or as a triangle.
 // A node step tests both children's boxes: hit leaves become the pending
 // triangle range (sibling leaves are consecutive: one range), a hit child node
@@ -39,11 +41,17 @@
 #ifndef BVH_STACK_SIZE
 #define BVH_STACK_SIZE 32
 #endif
+#ifndef BVH_ROW_TRIANGLES
+#define BVH_ROW_TRIANGLES 681
+#endif
+#ifndef BVH_ROOT_NODE
+#define BVH_ROOT_NODE 511
+#endif
 
 uniform highp sampler2DArray uBvh;
 
 struct BvhHit {
-  int triangle;     // BVH order (texels 4 + 3 triangle ..); -1 when nothing was hit
+  int triangle;     // BVH order (texels bvhTriangleTexel(triangle) ..); -1 when nothing was hit
   float t;
   vec2 barycentric; // weights of v1 and v2 (v0's is 1 - x - y)
 };
@@ -97,7 +105,20 @@ mat3 bvhShear(vec3 dir) {
   return mat3(ex - (dot(dir, ex) / dz) * ez, ey - (dot(dir, ey) / dz) * ez, ez / dz);
 }
 
-const int BVH_FIRST_TRIANGLE_TEXEL = 4;
+int bvhTriangleTexel(int j) {
+  return (j / BVH_ROW_TRIANGLES << BVH_TEXTURE_WIDTH_LOG2) + j % BVH_ROW_TRIANGLES * 3;
+}
+
+// The 4 texels from texel i (i % 2048 <= 2044: they share a row).
+void bvhTexels4(int i, out vec4 t0, out vec4 t1, out vec4 t2, out vec4 t3) {
+  const int columns = (1 << BVH_TEXTURE_WIDTH_LOG2) - 1;
+  const int rows = (1 << BVH_LAYER_ROWS_LOG2) - 1;
+  ivec3 at = ivec3(i & columns, (i >> BVH_TEXTURE_WIDTH_LOG2) & rows, i >> (BVH_TEXTURE_WIDTH_LOG2 + BVH_LAYER_ROWS_LOG2));
+  t0 = texelFetch(uBvh, at, 0);
+  t1 = texelFetchOffset(uBvh, at, 0, ivec2(1, 0));
+  t2 = texelFetchOffset(uBvh, at, 0, ivec2(2, 0));
+  t3 = texelFetchOffset(uBvh, at, 0, ivec2(3, 0));
+}
 
 // Closest hit before tMax (anyHit false), or the first found (anyHit true: shadow rays).
 bool bvhIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit) {
@@ -109,15 +130,13 @@ bool bvhIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit
   vec2 barycentric = vec2(0.0);
   int stack[BVH_STACK_SIZE];
   int sp = 0;
-  int node = 0;                    // the next node to visit; -1: none
-  int triangle = 0, triangleEnd = 0; // pending triangles: texels triangle, + 3, .. < triangleEnd
+  int node = BVH_ROOT_NODE;         // the next node to visit; -1: none
+  int triangle = 0, triangleEnd = 0; // pending triangles: texels triangle, the next, .. < triangleEnd
   do {
     bool isTriangle = triangle < triangleEnd;
     int texel = isTriangle ? triangle : 4 * max(node, 0);
-    vec4 t0 = bvhTexel(uBvh, texel);
-    vec4 t1 = bvhTexel(uBvh, texel + 1);
-    vec4 t2 = bvhTexel(uBvh, texel + 2);
-    vec4 t3 = bvhTexel(uBvh, texel + 3);
+    vec4 t0, t1, t2, t3;
+    bvhTexels4(texel, t0, t1, t2, t3);
 
     // As a triangle: the watertight test.
     vec3 A = (t0.xyz - origin) * shear;
@@ -131,19 +150,18 @@ bool bvhIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit
     best = found ? t : best;
     bestTexel = found ? texel : bestTexel;
     barycentric = found ? e.yz / det : barycentric;
-    triangle += isTriangle ? 3 : 0;
+    // The next triangle: 3 texels on, or the next row's first after a row's last (at column 2040).
+    triangle += isTriangle ? ((triangle & ((1 << BVH_TEXTURE_WIDTH_LOG2) - 1)) >= 3 * BVH_ROW_TRIANGLES - 3 ? 3 + (1 << BVH_TEXTURE_WIDTH_LOG2) - 3 * BVH_ROW_TRIANGLES : 3) : 0;
 
     // As a node: both children's boxes.
     float enter0 = bvhBoxEntry(t0.xyz, t1.xyz, origin, invDir, best);
     float enter1 = bvhBoxEntry(t2.xyz, t3.xyz, origin, invDir, best);
-    int ref0 = int(t0.w), ref1 = int(t1.w), count0 = int(t2.w), count1 = int(t3.w);
+    int ref0 = int(t0.w), ref1 = int(t1.w), end0 = int(t2.w), end1 = int(t3.w);
     bool hit0 = !isTriangle && enter0 < BVH_NO_HIT;
     bool hit1 = !isTriangle && enter1 < BVH_NO_HIT;
-    bool leaf0 = hit0 && count0 > 0, leaf1 = hit1 && count1 > 0;
-    bool inner0 = hit0 && count0 == 0, inner1 = hit1 && count1 == 0;
-    int first0 = BVH_FIRST_TRIANGLE_TEXEL + 3 * ref0, first1 = BVH_FIRST_TRIANGLE_TEXEL + 3 * ref1;
-    int end0 = first0 + 3 * count0, end1 = first1 + 3 * count1;
-    triangle = leaf0 ? (leaf1 ? min(first0, first1) : first0) : (leaf1 ? first1 : triangle);
+    bool leaf0 = hit0 && end0 > 0, leaf1 = hit1 && end1 > 0;
+    bool inner0 = hit0 && end0 == 0, inner1 = hit1 && end1 == 0;
+    triangle = leaf0 ? (leaf1 ? min(ref0, ref1) : ref0) : (leaf1 ? ref1 : triangle);
     triangleEnd = leaf0 ? (leaf1 ? max(end0, end1) : end0) : (leaf1 ? end1 : triangleEnd);
     bool nearFirst = enter0 <= enter1;
     stack[min(sp, BVH_STACK_SIZE - 1)] = nearFirst ? ref1 : ref0; // kept only when both are nodes
@@ -161,7 +179,8 @@ bool bvhIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit
     node = anyHit && found ? -1 : node;
     triangleEnd = anyHit && found ? 0 : triangleEnd;
   } while (node >= 0 || triangle < triangleEnd);
-  hit = BvhHit(bestTexel < 0 ? -1 : (bestTexel - BVH_FIRST_TRIANGLE_TEXEL) / 3, best, barycentric);
+  int triangleIndex = (bestTexel >> BVH_TEXTURE_WIDTH_LOG2) * BVH_ROW_TRIANGLES + (bestTexel & ((1 << BVH_TEXTURE_WIDTH_LOG2) - 1)) / 3;
+  hit = BvhHit(bestTexel < 0 ? -1 : triangleIndex, best, barycentric);
   return bestTexel >= 0;
 }
 
@@ -175,7 +194,7 @@ bool bvhAnyHit(vec3 origin, vec3 dir, float tMax) {
 }
 
 BvhSurface bvhSurface(BvhHit hit) {
-  int texel = BVH_FIRST_TRIANGLE_TEXEL + 3 * hit.triangle;
+  int texel = bvhTriangleTexel(hit.triangle);
   vec4 t0 = bvhTexel(uBvh, texel);
   vec4 t1 = bvhTexel(uBvh, texel + 1);
   vec4 t2 = bvhTexel(uBvh, texel + 2);
