@@ -37,6 +37,8 @@ export class Autosave {
   private lastText = '';
   private running: Promise<void> | null = null;
   private again = false;
+  /** Counts schedule() calls: a save that finishes after a newer change must not report 'saved'. */
+  private changes = 0;
 
   constructor(
     private readonly app: App,
@@ -64,6 +66,7 @@ export class Autosave {
   }
 
   schedule(): void {
+    this.changes += 1;
     clearTimeout(this.timer);
     this.setStatus(this.status === 'failed' ? 'failed' : 'pending', this.detail);
     this.timer = window.setTimeout(() => void this.flush(), this.delayMs);
@@ -87,18 +90,23 @@ export class Autosave {
   }
 
   private async save(): Promise<void> {
+    const changes = this.changes;
     const { text, droppedSteps } = encodeState(this.currentState());
+    // A change made while this save was writing is still to be saved (its timer is set): stay 'pending'.
+    const settled = (status: SaveStatus, detail: string) => {
+      if (this.changes === changes || status === 'failed') this.setStatus(status, detail);
+    };
     if (text === this.lastText && this.status !== 'failed') {
-      this.setStatus('saved', this.detail);
+      settled('saved', this.detail);
       return;
     }
     const result = await writeState(text);
     if (!result.ok) {
-      this.setStatus('failed', `not saved: ${result.reason}`);
+      settled('failed', `not saved: ${result.reason}`);
       return;
     }
     this.lastText = text;
-    this.setStatus('saved', droppedSteps > 0 ? `saved (the oldest ${droppedSteps} undo steps did not fit)` : 'saved');
+    settled('saved', droppedSteps > 0 ? `saved (the oldest ${droppedSteps} undo steps did not fit)` : 'saved');
   }
 
   /**

@@ -12,7 +12,7 @@ import { describe, expect, it } from 'vitest';
 import { decodePng } from '../../src/cli/png';
 import type { HeadlessApi } from '../../src/headless/main';
 import { defaultScene } from '../../src/scene/presets';
-import { canvasPoint, download, meanAbsDifference, openPage, spp, usePageHarness, waitForSpp, watchSppMinimum, type PageHarness } from '../support/page';
+import { canvasPoint, download, meanAbsDifference, openPage, spp, usePageHarness, waitForRestart, waitForSpp, watchRestarts, watchSppMinimum, type PageHarness } from '../support/page';
 
 const WIDTH = 256;
 const HEIGHT = 192;
@@ -156,9 +156,9 @@ describe('the page denoises the still view', () => {
     const target = control(page, 'stop at spp (0 = never)').locator('input');
     await target.fill('6');
     await target.press('Enter');
-    const minimum = await watchSppMinimum(page);
+    const restarts = await watchRestarts(page);
     await page.click('#reset-view');
-    await page.waitForFunction(() => (window as unknown as { __sppMin: number }).__sppMin <= 1);
+    await waitForRestart(restarts);
     await denoiseToggle(page).check();
     await waitForStatus(page, /^denoised at 6 spp \(\d+\.\d s\)$/);
     expect(await spp(page)).toBe(6);

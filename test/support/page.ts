@@ -93,6 +93,31 @@ export async function watchSppMinimum(page: Page): Promise<() => Promise<number>
   return () => page.evaluate(() => (window as unknown as { __sppMin: number }).__sppMin);
 }
 
+/**
+ * Counts restarts of the accumulation from now on: the samples the page
+ * reports (body[data-samples], complete plus the one in progress) going
+ * down. Unlike the spp shown going to 0 or 1, this does not depend on how
+ * many samples the machine renders in the first frame after the restart.
+ */
+export async function watchRestarts(page: Page): Promise<() => Promise<number>> {
+  await page.evaluate(() => {
+    const w = window as unknown as { __restarts: number };
+    let previous = Number(document.body.dataset.samples);
+    w.__restarts = 0;
+    new MutationObserver(() => {
+      const samples = Number(document.body.dataset.samples);
+      if (samples < previous) w.__restarts += 1;
+      previous = samples;
+    }).observe(document.body, { attributes: true, attributeFilter: ['data-samples'] });
+  });
+  return () => page.evaluate(() => (window as unknown as { __restarts: number }).__restarts);
+}
+
+/** Waits for the accumulation to restart (see watchRestarts). */
+export async function waitForRestart(restarts: () => Promise<number>, timeout = 30_000): Promise<void> {
+  await expect.poll(restarts, { timeout, interval: 50 }).toBeGreaterThan(0);
+}
+
 /** The canvas as the page shows it, RGBA8. */
 export async function canvasPixels(page: Page): Promise<{ width: number; height: number; rgba: Uint8Array }> {
   return decodePng(await page.getByTestId('viewport').screenshot());
