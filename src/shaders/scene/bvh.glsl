@@ -12,22 +12,26 @@
 //     (v0.xyz, material), (v1.xyz, normals texel or -1 if flat), (v2.xyz, mesh index);
 //     a smooth triangle's vertex normals n0 n1 n2 at its normals texel .. +2.
 //
-// Traversal, shaped for SwiftShader (it runs a pixel quad's 4 lanes in lock
-// step through every fetch of the loop body, whatever each lane does, and a
-// fetch costs as much as ~100 arithmetic operations; bench/swiftshader-costs.ts):
-// each step of the one loop fetches the same 4 texels for every lane (one
-// coordinate and constant offsets: no node or triangle straddles a row), and
-// uses them as a node (a lane with no triangle pending) or as a triangle.
+// Traversal, shaped for SwiftShader: it runs a pixel quad's 4 lanes in lock
+// step through everything in the loop body, whatever each lane does (both
+// sides of every branch; only a loop's back edge skips work), and a
+// texelFetch is a call into its sampler routine. So each step of the one loop
+// fetches the same 4 texels for every lane (one coordinate and constant
+// offsets: no node or triangle straddles a row) and uses them as a node (a
+// lane with no triangle pending) or as a triangle, both computed and one
+// selected. Per step the 4 fetches are about half the cost, the two box
+// tests, the triangle test and the bookkeeping (stack included) the rest
+// (bench/bvh-kernel-ab.ts, bench/swiftshader-costs.ts).
 // A node step tests both children's boxes: hit leaves become the pending
 // triangle range (sibling leaves are consecutive: one range), a hit child node
 // the next node (both: the nearer, the other pushed on a fixed stack of
 // BVH_STACK_SIZE; the build caps the depth at that); with no next node, one
-// is popped. A triangle step runs the watertight ray-triangle test of Woop,
-// Benthin and Wald (JCGT 2013), so a ray through a shared edge or vertex hits
-// one of its triangles. Everything in a step is computed for both cases and
-// selected (no branches: SwiftShader executes both sides of every branch).
-// The slab test is conservative. Hits need 0 < t < tMax: the caller offsets
-// ray origins.
+// is popped (no distances on the stack: a popped node farther than the best
+// hit costs one step, which its boxes then reject). A triangle step runs the
+// watertight ray-triangle test of Woop, Benthin and Wald (JCGT 2013), so a
+// ray through a shared edge or vertex hits one of its triangles. The slab
+// test is conservative. Hits need 0 < t < tMax: the caller offsets ray
+// origins.
 
 // Compiled in only for scenes with meshes (HAS_MESHES; trace program variants).
 #if HAS_MESHES
