@@ -66,6 +66,8 @@ const PATCHES: Record<string, [string | RegExp, string][]> = {
   noMeshShadow: [['blocked = blocked || bvhAnyHit(origin, direction, tMax);', '']],
   // Meshes: shadow rays traverse the BVH with tMax 0 (one step: the cost of a call, not of its work).
   meshShadowOneStep: [['blocked = blocked || bvhAnyHit(origin, direction, tMax);', 'blocked = blocked || bvhAnyHit(origin, direction, 0.0);']],
+  // Meshes: every closest-hit traversal done twice (both results used): the extra time is what they cost in place.
+  doubleClosest: [['  if (bvhClosestHit(origin, direction, hit.t, triangle)) {', '  BvhHit twice;\n  bool again = bvhClosestHit(origin, direction, hit.t, twice);\n  bool once = bvhClosestHit(origin, direction, hit.t, triangle);\n  triangle.t = max(triangle.t, twice.t);\n  if (once && again) {']],
   // Meshes: no closest-hit traversal either (wrong image: the meshes vanish).
   noMeshHit: [['if (bvhClosestHit(origin, direction, hit.t, triangle)) {', 'if (false) {']],
   // The camera: a fixed direction per pixel.

@@ -48,6 +48,15 @@ async function main(argv: string[]): Promise<void> {
               gl.bufferData(gl.UNIFORM_BUFFER, 65536, gl.STATIC_DRAW);
               gl.bindBufferBase(gl.UNIFORM_BUFFER, b, buffer);
             }
+            // Samplers of different types may not share a unit: give each its own (nothing bound reads as zero).
+            const uniforms = gl.getProgramParameter(program, gl.ACTIVE_UNIFORMS) as number;
+            let unit = 0;
+            for (let u = 0; u < uniforms; u++) {
+              const info = gl.getActiveUniform(program, u)!;
+              if (/SAMPLER/.test(Object.keys(Object.getPrototypeOf(gl)).find((k) => (gl as unknown as Record<string, number>)[k] === info.type) ?? '')) {
+                gl.uniform1i(gl.getUniformLocation(program, info.name), unit++);
+              }
+            }
             gl.bindVertexArray(gl.createVertexArray());
             gl.drawArrays(gl.TRIANGLES, 0, 3);
             gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));

@@ -8,6 +8,7 @@
 import { readFileSync } from 'node:fs';
 import { openRenderSession } from '../src/node/session';
 import { parseSceneText } from '../src/scene/schema';
+import { readSceneFiles } from '../src/node/sceneFiles';
 
 function option(argv: string[], name: string, fallback: string): string {
   const i = argv.indexOf(`--${name}`);
@@ -16,10 +17,11 @@ function option(argv: string[], name: string, fallback: string): string {
 
 async function loadSeconds(webRoot: string | undefined, sceneFile: string): Promise<number> {
   const scene = parseSceneText(readFileSync(sceneFile, 'utf8'));
+  const { files } = await readSceneFiles(scene, sceneFile); // environment maps, meshes
   const session = await openRenderSession(webRoot ? { webRoot } : {});
   try {
     const start = performance.now();
-    await session.load(scene, { width: 64, height: 48, seed: 1 });
+    await session.load(scene, { width: 64, height: 48, seed: 1 }, files);
     await session.render(1);
     return (performance.now() - start) / 1000;
   } finally {

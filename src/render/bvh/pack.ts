@@ -6,8 +6,8 @@
  *
  * One texture, so that one traversal step fetches the same 4 texels whether
  * it visits a node or tests a triangle (SwiftShader runs every fetch of a
- * loop body for all 4 lanes of a quad, whatever each lane does; a fetch costs
- * as much as ~100 arithmetic operations there: bench/swiftshader-costs.ts).
+ * loop body for all 4 lanes of a quad, whatever each lane does, and the 4
+ * fetches are about half of a step's cost: bench/bvh-kernel-ab.ts).
  *
  * A 2D array texture BVH_TEXTURE_WIDTH (2048) texels wide and
  * BVH_LAYER_ROWS (512) high, as many layers as needed (a single layer only

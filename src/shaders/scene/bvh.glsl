@@ -12,22 +12,26 @@
 //     (v0.xyz, material), (v1.xyz, normals texel or -1 if flat), (v2.xyz, mesh index);
 //     a smooth triangle's vertex normals n0 n1 n2 at its normals texel .. +2.
 //
-// Traversal, shaped for SwiftShader (it runs a pixel quad's 4 lanes in lock
-// step through every fetch of the loop body, whatever each lane does, and a
-// fetch costs as much as ~100 arithmetic operations; bench/swiftshader-costs.ts):
-// each step of the one loop fetches the same 4 texels for every lane (one
-// coordinate and constant offsets: no node or triangle straddles a row), and
-// uses them as a node (a lane with no triangle pending) or as a triangle.
+// Traversal, shaped for SwiftShader: it runs a pixel quad's 4 lanes in lock
+// step through everything in the loop body, whatever each lane does (both
+// sides of every branch; only a loop's back edge skips work), and a
+// texelFetch is a call into its sampler routine. So each step of the one loop
+// fetches the same 4 texels for every lane (one coordinate and constant
+// offsets: no node or triangle straddles a row) and uses them as a node (a
+// lane with no triangle pending) or as a triangle, both computed and one
+// selected. Per step the 4 fetches are about half the cost, the two box
+// tests, the triangle test and the bookkeeping (stack included) the rest
+// (bench/bvh-kernel-ab.ts, bench/swiftshader-costs.ts).
 // A node step tests both children's boxes: hit leaves become the pending
 // triangle range (sibling leaves are consecutive: one range), a hit child node
 // the next node (both: the nearer, the other pushed on a fixed stack of
 // BVH_STACK_SIZE; the build caps the depth at that); with no next node, one
-// is popped. A triangle step runs the watertight ray-triangle test of Woop,
-// Benthin and Wald (JCGT 2013), so a ray through a shared edge or vertex hits
-// one of its triangles. Everything in a step is computed for both cases and
-// selected (no branches: SwiftShader executes both sides of every branch).
-// The slab test is conservative. Hits need 0 < t < tMax: the caller offsets
-// ray origins.
+// is popped (no distances on the stack: a popped node farther than the best
+// hit costs one step, which its boxes then reject). A triangle step runs the
+// watertight ray-triangle test of Woop, Benthin and Wald (JCGT 2013), so a
+// ray through a shared edge or vertex hits one of its triangles. The slab
+// test is conservative. Hits need 0 < t < tMax: the caller offsets ray
+// origins.
 
 // Compiled in only for scenes with meshes (HAS_MESHES; trace program variants).
 #if HAS_MESHES
@@ -120,6 +124,18 @@ void bvhTexels4(int i, out vec4 t0, out vec4 t1, out vec4 t2, out vec4 t3) {
   t3 = texelFetchOffset(uBvh, at, 0, ivec2(3, 0));
 }
 
+// The watertight test's edge functions of triangle (v0, v1, v2) in ray space
+// (the barycentric weights of v0, v1, v2 times det = e.x + e.y + e.z), and
+// t * det in tScaled.
+vec3 bvhEdges(vec3 v0, vec3 v1, vec3 v2, vec3 origin, mat3 shear, out float tScaled) {
+  vec3 A = (v0 - origin) * shear;
+  vec3 B = (v1 - origin) * shear;
+  vec3 C = (v2 - origin) * shear;
+  vec3 e = vec3(C.x * B.y - C.y * B.x, A.x * C.y - A.y * C.x, B.x * A.y - B.y * A.x);
+  tScaled = dot(e, vec3(A.z, B.z, C.z));
+  return e;
+}
+
 // Closest hit before tMax (anyHit false), or the first found (anyHit true: shadow rays).
 bool bvhIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit) {
   // Zero direction components become huge (same sign): no 0 * inf = NaN in the slab test.
@@ -127,7 +143,6 @@ bool bvhIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit
   mat3 shear = bvhShear(dir);
   float best = tMax;
   int bestTexel = -1;
-  vec2 barycentric = vec2(0.0);
   int stack[BVH_STACK_SIZE];
   int sp = 0;
   int node = BVH_ROOT_NODE;         // the next node to visit; -1: none
@@ -138,18 +153,17 @@ bool bvhIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit
     vec4 t0, t1, t2, t3;
     bvhTexels4(texel, t0, t1, t2, t3);
 
-    // As a triangle: the watertight test.
-    vec3 A = (t0.xyz - origin) * shear;
-    vec3 B = (t1.xyz - origin) * shear;
-    vec3 C = (t2.xyz - origin) * shear;
-    vec3 e = vec3(C.x * B.y - C.y * B.x, A.x * C.y - A.y * C.x, B.x * A.y - B.y * A.x);
+    // As a triangle: the watertight test. (The barycentrics are computed
+    // once after the loop: kept per step, they cost SwiftShader's compiler
+    // 0.8 s more for the trace shader.)
+    float tScaled;
+    vec3 e = bvhEdges(t0.xyz, t1.xyz, t2.xyz, origin, shear, tScaled);
     float det = e.x + e.y + e.z;
-    float t = dot(e, vec3(A.z, B.z, C.z)) / det;
+    float t = tScaled / det;
     bool inside = !(any(lessThan(e, vec3(0.0))) && any(greaterThan(e, vec3(0.0))));
     bool found = isTriangle && inside && det != 0.0 && t > 0.0 && t < best;
     best = found ? t : best;
     bestTexel = found ? texel : bestTexel;
-    barycentric = found ? e.yz / det : barycentric;
     // The next triangle: 3 texels on, or the next row's first after a row's last (at column 2040).
     triangle += isTriangle ? ((triangle & ((1 << BVH_TEXTURE_WIDTH_LOG2) - 1)) >= 3 * BVH_ROW_TRIANGLES - 3 ? 3 + (1 << BVH_TEXTURE_WIDTH_LOG2) - 3 * BVH_ROW_TRIANGLES : 3) : 0;
 
@@ -180,7 +194,11 @@ bool bvhIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit
     triangleEnd = anyHit && found ? 0 : triangleEnd;
   } while (node >= 0 || triangle < triangleEnd);
   int triangleIndex = (bestTexel >> BVH_TEXTURE_WIDTH_LOG2) * BVH_ROW_TRIANGLES + (bestTexel & ((1 << BVH_TEXTURE_WIDTH_LOG2) - 1)) / 3;
-  hit = BvhHit(bestTexel < 0 ? -1 : triangleIndex, best, barycentric);
+  vec4 v0, v1, v2, v3;
+  bvhTexels4(max(bestTexel, 0), v0, v1, v2, v3);
+  float tScaled;
+  vec3 e = bvhEdges(v0.xyz, v1.xyz, v2.xyz, origin, shear, tScaled);
+  hit = BvhHit(bestTexel < 0 ? -1 : triangleIndex, best, e.yz / (e.x + e.y + e.z));
   return bestTexel >= 0;
 }
 
