@@ -8,7 +8,8 @@
  * maximum, samples per second (with the fraction of the sample in progress,
  * where the page tells it) and the render loop's paths per frame. Run after
  * `npm run build:web`:
- *   npx tsx bench/mesh-page-frames.ts [--triangles 1000000] [--seconds 15] [--paused] [--web DIR]
+ *   npx tsx bench/mesh-page-frames.ts [--triangles 1000000] [--seconds 15] [--paused] [--timeline] [--web DIR]
+ * (--timeline: lists each frame over 100 ms while rendering the mesh, with the frames around it.)
  * (--web: another build's dist/web, to compare.)
  * (--paused: the render is paused while the model loads, to see the page's own work.)
  */
@@ -26,13 +27,34 @@ const option = (argv: string[], name: string, fallback: string) => {
 };
 
 function recordFrames(): void {
-  const w = window as unknown as { __frames: number[] };
+  const w = window as unknown as { __frames: number[]; __paths: number[] };
   w.__frames = [];
+  w.__paths = [];
   const tick = (t: number) => {
     w.__frames.push(t);
+    // The paths the render loop chose in its last frame (this callback runs before the loop's).
+    w.__paths.push(Number(document.body?.dataset.pathsPerFrame ?? 0));
     requestAnimationFrame(tick);
   };
   requestAnimationFrame(tick);
+}
+
+/** With --timeline: every frame over 100 ms in the window, with the paths per frame around it. */
+async function longFrames(page: Page, from: number, to: number): Promise<string> {
+  const { frames, paths } = await page.evaluate(() => {
+    const w = window as unknown as { __frames: number[]; __paths: number[] };
+    return { frames: w.__frames, paths: w.__paths };
+  });
+  const lines: string[] = [];
+  for (let i = 1; i < frames.length; i++) {
+    if (frames[i] < from || frames[i] > to || frames[i] - frames[i - 1] <= 100) continue;
+    const around = frames.slice(Math.max(1, i - 4), i + 3).map((t, k) => {
+      const j = Math.max(1, i - 4) + k;
+      return `${(t - frames[j - 1]).toFixed(0)}ms/${paths[j]}`;
+    });
+    lines.push(`  t=${((frames[i] - from) / 1000).toFixed(2)} s: gap ${(frames[i] - frames[i - 1]).toFixed(0)} ms; gaps/paths around: ${around.join(' ')}`);
+  }
+  return lines.join('\n');
 }
 
 const now = (page: Page) => page.evaluate(() => performance.now());
@@ -112,6 +134,7 @@ async function main(argv: string[]): Promise<void> {
       `rendering ${triangles} triangles at ${await page.locator('#resolution').textContent()}: ${await gaps(page, t3, t4)}; ` +
         `${s4.toFixed(2)} spp, ${rate.toFixed(3)} spp/s${await pathsPerFrame(page)}`,
     );
+    if (argv.includes('--timeline')) console.log(await longFrames(page, t3, t4));
     // The floor: the same page with the render paused, so frame gaps are the
     // page's and the machine's own (a loaded machine stalls frames too).
     await page.click('#pause');
