@@ -3,7 +3,7 @@
  * tests drive through Playwright: the same PathTracer as the interactive
  * page, exposed as `window.pathtrace` with transfer-friendly results.
  */
-import { PathTracer } from '../render/PathTracer';
+import { DEFAULT_PATHS_PER_DRAW, PathTracer } from '../render/PathTracer';
 import type { DisplayOptions } from '../render/passes/display';
 import type { SamplerKind } from '../render/sampling';
 import { loadSceneAssets } from '../scene/assets';
@@ -64,7 +64,27 @@ export interface HeadlessApi {
 }
 
 let tracer: PathTracer | null = null;
+/** The options `tracer` was made with that only a new PathTracer can change. */
+let tracerKind = '';
 let loseContextExtension: WEBGL_lose_context | null = null;
+
+/**
+ * A loaded scene goes to the tracer already here when its kind allows: the
+ * same context keeps its compiled programs, and SwiftShader compiles a
+ * program at its first draw in each new context (~0.5 s for a sphere scene,
+ * ~1.8 s for a mesh scene), a cost that tests rendering a scene in several
+ * seeded batches would otherwise pay per batch. The result is the same
+ * bits: an image depends only on scene, size, seed and sample indices.
+ */
+function reuseTracer(scene: Scene, options: LoadOptions, assets: Awaited<ReturnType<typeof loadSceneAssets>>, kind: string): boolean {
+  if (!tracer || tracer.contextLost || kind !== tracerKind) return false;
+  tracer.pathsPerDraw = DEFAULT_PATHS_PER_DRAW;
+  tracer.setAovs(options.aovs ?? false);
+  tracer.setSize(options.width, options.height);
+  tracer.setSeed(options.seed);
+  tracer.setScene(scene, assets);
+  return true;
+}
 
 function requireTracer(): PathTracer {
   if (!tracer) throw new Error('no scene loaded');
@@ -101,10 +121,14 @@ const api: HeadlessApi = {
       if (!(name in files)) throw new Error('no such file was given to the page');
       return bytesFromBase64(files[name]);
     });
-    tracer?.dispose();
-    tracer = new PathTracer(undefined, scene, { ...options, assets });
-    loseContextExtension = tracer.gl.getExtension('WEBGL_lose_context');
-    return { renderer: tracer.renderer };
+    const kind = JSON.stringify([options.sampler ?? 'kronecker', options.russianRoulette ?? false]);
+    if (!reuseTracer(scene, options, assets, kind)) {
+      tracer?.dispose();
+      tracer = new PathTracer(undefined, scene, { ...options, assets });
+      tracerKind = kind;
+      loseContextExtension = tracer.gl.getExtension('WEBGL_lose_context');
+    }
+    return { renderer: tracer!.renderer };
   },
   render(samples, samplesPerDraw, pathsPerDraw) {
     const t = requireTracer();
