@@ -56,7 +56,7 @@ function buildProgram(io: Required<Pick<RunOptions, 'stdout' | 'stderr'>>, optio
   program
     .command('render')
     .description('render a scene to a PNG (tone-mapped sRGB) and optionally a PFM (linear radiance)')
-    .argument('<scene>', 'scene file (JSON, scene format version 1)')
+    .argument('<scene>', 'scene file (JSON, scene format version 1 or 2)')
     .option('-o, --output <file>', 'PNG output (default: SCENE basename .png in the current directory)')
     .option('--hdr <file>', 'also write linear radiance as PFM')
     .option('--spp <n>', `samples per pixel (default: ${DEFAULT_SPP})`)
