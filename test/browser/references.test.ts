@@ -69,6 +69,11 @@ const SCENES: Record<string, { spp: number; block?: number; worstBlock?: number 
   bunny: { spp: 768, block: 32, worstBlock: 0.08 },
   // Our own scene (scripts/make-reference.sh): an emissive mesh, sampled by next-event estimation.
   'emissive-mesh': { spp: 256 },
+  // Ours too: an emissive quad whose vertex normals are tilted 37 degrees off
+  // its face. Mitsuba converts a mesh light sample's area density to solid
+  // angle with the shading normal's cosine; with the geometric one, the
+  // ground under it came out 10-25% off (audit, bench/results/audit-v2-2026-11-28.md).
+  'emissive-tilted-normals': { spp: 512, block: 32 },
 };
 const BATCHES = 8;
 

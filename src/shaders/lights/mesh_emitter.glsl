@@ -3,9 +3,18 @@
 // alias table per mesh in uEmissiveTriangles, src/render/passes/assetTextures.ts),
 // then a uniform point on the triangle. So a point has the density, per unit
 // area, of the mesh's MeshRecord.areaPdf = pdf(mesh) / area(mesh), turned
-// into solid angle at x by distance^2 / |cos| at the light (the geometric
-// normal: the area measure). The triangle emits towards the side its
-// shading normal faces (the format's one-sided emission).
+// into solid angle at x by distance^2 / |cos| at the light, the cosine taken
+// against the SHADING normal, as Mitsuba 3 does (Mesh::sample_position and
+// DirectionSample put the interpolated vertex normal in ds.n, and
+// Shape::sample_direction / pdf_direction divide by |dot(d, ds.n)|). On a
+// smooth mesh that is not the true density (the geometric normal's cosine
+// would be), so Mitsuba's light samples are weighted by
+// |cos shading| / |cos geometric|; the format defines the image as what
+// Mitsuba renders ("the shading normal decides ... the cosines"), so we do
+// the same, in both the sample's density and meshEmitterPdf (the MIS weight
+// of a BSDF-sampled hit). Flat meshes are unaffected (the two normals agree).
+// The triangle emits towards the side its shading normal faces (the
+// format's one-sided emission).
 //
 // uEmissiveTriangles: RGBA32F, BVH_TEXTURE_WIDTH wide; slot s at
 // (s % W, s / W) = (BVH triangle, alias threshold, alias's BVH triangle, 0).
@@ -29,7 +38,7 @@ vec3 sampleMeshEmitter(vec3 x, Emitter e, vec3 u, out float pdf, out float dista
   vec3 toLight = surface.position - x;
   distance = length(toLight);
   vec3 direction = toLight / distance;
-  float cosLight = abs(dot(direction, surface.geometricNormal));
+  float cosLight = abs(dot(direction, surface.shadingNormal));
   pdf = cosLight > 0.0 ? loadMesh(e.primitive).areaPdf / e.pdf * distance * distance / cosLight : 0.0;
   radiance = dot(direction, surface.shadingNormal) < 0.0 ? e.radiance : vec3(0.0);
   return direction;
@@ -38,7 +47,7 @@ vec3 sampleMeshEmitter(vec3 x, Emitter e, vec3 u, out float pdf, out float dista
 // Density of light sampling drawing `direction` from x towards the
 // triangle `hit` (its emitterPdf is the mesh's areaPdf), emitter choice included.
 float meshEmitterPdf(vec3 direction, Hit hit) {
-  float cosLight = abs(dot(direction, hit.geometricNormal));
+  float cosLight = abs(dot(direction, hit.normal));  // the shading normal (see above)
   return cosLight > 0.0 ? hit.emitterPdf * hit.t * hit.t / cosLight : 0.0;
 }
 
