@@ -97,6 +97,24 @@ describe('the same icosphere in every format', () => {
       [-y, x, z].forEach((e, k) => close(mesh.normals![(n + v) * 3 + k], e));
     }
   });
+
+  it('a mirroring glTF node (negative determinant) keeps every face wound outward, as glTF requires', async () => {
+    const json = JSON.parse(readFileSync(new URL('ico-flat.gltf', FIXTURES), 'utf8'));
+    for (const scale of [[1, 1, 1], [-1, 1, 1], [1, -2, 0.5], [-1, -1, -1]]) {
+      json.nodes[0].scale = scale;
+      const mesh = await decodeMesh(new TextEncoder().encode(JSON.stringify(json)), 'a.gltf');
+      let outward = 0;
+      for (let t = 0; t < mesh.indices.length / 3; t++) {
+        const [a, b, c] = [0, 1, 2].map((k) => Array.from(mesh.positions.subarray(mesh.indices[t * 3 + k] * 3, mesh.indices[t * 3 + k] * 3 + 3)));
+        const e1 = [0, 1, 2].map((k) => b[k] - a[k]);
+        const e2 = [0, 1, 2].map((k) => c[k] - a[k]);
+        const normal = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+        // The icosphere is centred on the origin: outward = along the centroid.
+        if (normal.reduce((sum, v, k) => sum + v * (a[k] + b[k] + c[k]), 0) > 0) outward++;
+      }
+      expect(outward, `scale ${scale}`).toBe(mesh.indices.length / 3);
+    }
+  });
 });
 
 describe('the shared meshes', () => {
