@@ -90,13 +90,18 @@ function sameTriangles(a: TriangleMesh, b: TriangleMesh): boolean {
 /** The selected mesh's controls: its file, material (as a sphere's) and transform. */
 export function addMeshControls(folder: GUI, app: App, mesh: () => Mesh, tracked: <T extends Controller>(c: T) => T): void {
   folder.add({ file: mesh().file }, 'file').name('file').disable();
+  // What the model costs: its triangles (each mesh adds its own copy to the BVH).
+  const decoded = app.assets.meshes.get(mesh().file);
+  const triangles = decoded ? (decoded.indices.length / 3).toLocaleString('en-US') : 'not loaded';
+  folder.add({ triangles }, 'triangles').name('triangles').disable();
   addSphereMaterialControls(folder, app, mesh, tracked);
   const axis = (label: string, vector: () => Vec3, k: number, range?: [number, number, number]) => {
     const target = {
       get value() { return vector()[k]; },
       set value(v: number) { app.live(() => (vector()[k] = v)); },
     };
-    const c = range ? folder.add(target, 'value', ...range) : folder.add(target, 'value').step(0.01);
+    // Shown to 3 decimals (a fitted model's position is not a round number); the value keeps its precision.
+    const c = range ? folder.add(target, 'value', ...range) : folder.add(target, 'value').step(0.01).decimals(3);
     tracked(c.name(label));
   };
   ['x', 'y', 'z'].forEach((name, k) => axis(`position ${name}`, () => mesh().position, k));
@@ -112,7 +117,7 @@ export function addMeshControls(folder: GUI, app: App, mesh: () => Mesh, tracked
         mesh().scale = [s[0] * factor, s[1] * factor, s[2] * factor];
       });
     },
-  }, 'scale').step(0.001).name('scale'));
+  }, 'scale').step(0.001).decimals(4).name('scale'));
 }
 
 // ---------------------------------------------------------------- examples

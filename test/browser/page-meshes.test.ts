@@ -52,6 +52,9 @@ describe('meshes on the page', () => {
     const centre = await canvasPoint(page, 0.5, 0.5);
     await page.mouse.click(centre.x, centre.y);
     expect(await selectionTitle(page)).toMatch(/Selected mesh 1/);
+    const icoTriangles = (await decodeMesh(new Uint8Array(readFileSync(ICO)), 'ico-smooth.obj')).indices.length / 3;
+    const trianglesField = page.locator('.lil-controller').filter({ has: page.locator('.lil-name', { hasText: /^triangles$/ }) }).locator('input');
+    expect(await trianglesField.inputValue(), 'the panel tells the triangle count').toBe(icoTriangles.toLocaleString('en-US'));
 
     // Drag it sideways: it moves over the horizontal plane (x changes, y does not).
     await drag(page, centre, 40, 0);
