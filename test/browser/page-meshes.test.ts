@@ -11,7 +11,7 @@ import type { Page } from 'playwright-core';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { decodeMesh } from '../../src/scene/mesh';
 import { meshBounds } from '../../src/scene/picking';
-import { canvasPixels, canvasPoint, drag, meanAbsDifference, openPage, savedScene, spp, waitForSpp, usePageHarness } from '../support/page';
+import { canvasPixels, canvasPoint, drag, meanAbsDifference, openPage, savedScene, spp, waitForRestart, waitForSpp, watchRestarts, usePageHarness } from '../support/page';
 
 const ICO = fileURLToPath(new URL('../fixtures/meshes/ico-smooth.obj', import.meta.url));
 const DRACO = fileURLToPath(new URL('../fixtures/meshes/ico-smooth-draco.glb', import.meta.url));
@@ -76,12 +76,10 @@ describe('meshes on the page', () => {
     await page.keyboard.press('Escape'); // no selection outline in the screenshots
     const withMesh = await canvasPixels(page);
     await page.mouse.click(centre.x + 40, centre.y);
-    // A restart shows as a count below this one: it must be at least 1 (a first sample drawn in tiles takes a while under load).
-    await waitForSpp(page, 1);
-    const counted = await spp(page);
+    const restarts = await watchRestarts(page);
     await page.keyboard.press('Delete');
     expect(await meshesOf(page)).toHaveLength(0);
-    await page.waitForFunction((n) => Number(document.querySelector('[data-testid="spp"]')?.textContent) < n, counted); // restarted
+    await waitForRestart(restarts);
     await waitForSpp(page, 2);
     expect(meanAbsDifference((await canvasPixels(page)).rgba, withMesh.rgba)).toBeGreaterThan(2);
     await page.keyboard.press('Control+z');
