@@ -166,20 +166,20 @@ async function main(argv: string[]): Promise<void> {
         gl.texSubImage3D(gl.TEXTURE_2D_ARRAY, 0, 0, 0, 0, 2048, 512, 1, gl.RGBA, gl.FLOAT, data);
         gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
         gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-        const t2 = gl.createTexture();
-        gl.activeTexture(gl.TEXTURE1);
-        gl.bindTexture(gl.TEXTURE_2D, t2);
-        gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, 2048, 512);
-        gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, 2048, 512, gl.RGBA, gl.FLOAT, data);
-        gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-        gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-        const u2 = gl.createTexture();
-        gl.activeTexture(gl.TEXTURE2);
-        gl.bindTexture(gl.TEXTURE_2D, u2);
-        gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32UI, 2048, 512);
-        gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, 2048, 512, gl.RGBA_INTEGER, gl.UNSIGNED_INT, new Uint32Array(data.buffer));
-        gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-        gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+        // The same texels as 2D textures: float on unit 1 (uT2), their bits as uint on unit 2 (uU2).
+        // (A loop, not a local function: tsx would wrap a named one in __name, which the page lacks.)
+        const planes = [
+          [gl.TEXTURE1, gl.RGBA32F, gl.RGBA, gl.FLOAT, data],
+          [gl.TEXTURE2, gl.RGBA32UI, gl.RGBA_INTEGER, gl.UNSIGNED_INT, new Uint32Array(data.buffer)],
+        ] as const;
+        for (const [unit, internalFormat, format, type, pixels] of planes) {
+          gl.activeTexture(unit);
+          gl.bindTexture(gl.TEXTURE_2D, gl.createTexture());
+          gl.texStorage2D(gl.TEXTURE_2D, 1, internalFormat, 2048, 512);
+          gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, 2048, 512, format, type, pixels);
+          gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+          gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+        }
         gl.bindVertexArray(gl.createVertexArray());
         const programs: Record<string, WebGLProgram> = {};
         for (const [name, source] of Object.entries(sources)) {
