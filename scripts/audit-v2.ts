@@ -21,7 +21,7 @@ import { copyFileSync, existsSync, mkdirSync, readFileSync, writeFileSync } from
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { decodePfm, encodePfm } from '../src/image/pfm';
-import { blockMeans, meanValue, relativeMse, type LinearImage } from '../src/node/imageMetrics';
+import { average, blockMeans, meanValue, predictedRelMse, relativeMse, varianceOfMean, type LinearImage } from '../src/node/imageMetrics';
 import { openRenderSession } from '../src/node/session';
 import { readSceneFiles } from '../src/node/sceneFiles';
 import { parseSceneText } from '../src/scene/schema';
@@ -352,19 +352,6 @@ function reference(sceneFile: string, spp: number): { image: LinearImage; second
   return { image, seconds };
 }
 
-function average(images: LinearImage[]): LinearImage {
-  const data = new Float32Array(images[0].data.length);
-  for (const image of images) image.data.forEach((v, i) => (data[i] += v / images.length));
-  return { ...images[0], data };
-}
-
-function varianceOfMean(images: LinearImage[], mean: LinearImage): LinearImage {
-  const k = images.length;
-  const data = new Float32Array(mean.data.length);
-  for (const image of images) image.data.forEach((v, i) => (data[i] += (v - mean.data[i]) ** 2 / ((k - 1) * k)));
-  return { ...mean, data };
-}
-
 function channelMeans(image: LinearImage): number[] {
   const sums = [0, 0, 0];
   for (let p = 0; p < image.width * image.height; p++) for (let c = 0; c < 3; c++) sums[c] += image.data[p * image.channels + c];
@@ -444,11 +431,7 @@ async function main(): Promise<void> {
         if (rel > worstRel) [worstRel, worstRelAt] = [rel, at(i)];
         worstExcess = Math.max(worstExcess, rel - 2 * relSigma);
       }
-      let predicted = 0;
-      for (let p = 0; p < image.width * image.height; p++) {
-        for (let c = 0; c < 3; c++) predicted += variance.data[p * 4 + c] / (reference_.data[p * 3 + c] ** 2 + 0.01);
-      }
-      predicted /= image.width * image.height * 3;
+      const predicted = predictedRelMse(variance, reference_);
       const ours = channelMeans(image);
       const theirs = channelMeans(reference_);
       // z of the whole image's mean per channel: our variance of the mean, plus the

@@ -96,3 +96,32 @@ function checkSameSize(a: LinearImage, b: LinearImage): void {
     throw new Error(`image sizes differ: ${a.width}x${a.height} vs ${b.width}x${b.height}`);
   }
 }
+
+/** The per-pixel mean of independent renders (batches) of one image. */
+export function average(images: LinearImage[]): LinearImage {
+  const data = new Float32Array(images[0].data.length);
+  for (const image of images) image.data.forEach((v, i) => (data[i] += v / images.length));
+  return { ...images[0], data };
+}
+
+/** Per-pixel variance of the average of the batches: their sample variance / their count. */
+export function varianceOfMean(images: LinearImage[], mean: LinearImage): LinearImage {
+  const k = images.length;
+  const data = new Float32Array(mean.data.length);
+  for (const image of images) image.data.forEach((v, i) => (data[i] += (v - mean.data[i]) ** 2 / ((k - 1) * k)));
+  return { ...mean, data };
+}
+
+/** E[relMSE] of an unbiased image with this per-pixel variance: variance over (ref^2 + 0.01), as relativeMse. */
+export function predictedRelMse(variance: LinearImage, reference: LinearImage): number {
+  checkSameSize(variance, reference);
+  let sum = 0;
+  const n = variance.width * variance.height;
+  for (let p = 0; p < n; p++) {
+    for (let c = 0; c < 3; c++) {
+      const r = reference.data[p * reference.channels + c];
+      sum += variance.data[p * variance.channels + c] / (r * r + 0.01);
+    }
+  }
+  return sum / (n * 3);
+}

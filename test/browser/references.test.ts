@@ -25,7 +25,7 @@
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { encodePfm } from '../../src/image/pfm';
-import { blockMeans, compareBlocks, type LinearImage, meanValue, relativeMse } from '../../src/node/imageMetrics';
+import { average, blockMeans, compareBlocks, type LinearImage, meanValue, predictedRelMse, relativeMse, varianceOfMean } from '../../src/node/imageMetrics';
 import { loadFixtureScene, loadReference, renderLinear, useRenderSession } from '../support/browser';
 import { cameraRay } from '../../src/scene/camera';
 import type { Scene } from '../../src/scene/types';
@@ -155,33 +155,6 @@ function farClipAllowance(scene: Scene, image: LinearImage, reference: LinearIma
     }
   }
   return { width, height, channels: 3, data };
-}
-
-function average(images: LinearImage[]): LinearImage {
-  const data = new Float32Array(images[0].data.length);
-  for (const image of images) image.data.forEach((v, i) => (data[i] += v / images.length));
-  return { ...images[0], data };
-}
-
-/** Per-pixel variance of the average of the batches: sample variance / count. */
-function varianceOfMean(images: LinearImage[], mean: LinearImage): LinearImage {
-  const k = images.length;
-  const data = new Float32Array(mean.data.length);
-  for (const image of images) image.data.forEach((v, i) => (data[i] += (v - mean.data[i]) ** 2 / ((k - 1) * k)));
-  return { ...mean, data };
-}
-
-/** E[relMSE] of an unbiased image: its per-pixel variance over (ref^2 + 0.01). */
-function predictedRelMse(variance: LinearImage, reference: LinearImage): number {
-  let sum = 0;
-  const n = variance.width * variance.height;
-  for (let p = 0; p < n; p++) {
-    for (let c = 0; c < 3; c++) {
-      const r = reference.data[p * 3 + c];
-      sum += variance.data[p * 4 + c] / (r * r + 0.01);
-    }
-  }
-  return sum / (n * 3);
 }
 
 function writeFailureImages(name: string, image: LinearImage, reference: LinearImage): void {
