@@ -8,6 +8,7 @@
  * fetch. --big: fetches over 16 MB instead of 256 KB. Variants alternate in one Chromium (the machine is shared).
  *   npx tsx bench/swiftshader-costs.ts [--rounds 5]
  */
+import { readFileSync } from 'node:fs';
 import { launchChromium } from '../src/node/session';
 
 const VERTEX = `#version 300 es
@@ -50,16 +51,18 @@ ${body}
 const ALU8 = '    acc = acc * 1.0001 + 0.25;';
 
 // One step of the BVH traversal (scene/bvh.glsl) at pseudo-random texels, parts removable by #defines.
-const STEP_DECLARATIONS = `
-float boxEntry(vec3 lo, vec3 hi, vec3 origin, vec3 invDir, float tMax) {
-  vec3 t0 = (lo - origin) * invDir;
-  vec3 t1 = (hi - origin) * invDir;
-  vec3 near = min(t0, t1);
-  vec3 far = max(t0, t1);
-  float enter = max(max(near.x, near.y), max(near.z, 0.0));
-  float exit = min(min(far.x, far.y), min(far.z, tMax));
-  return enter <= exit * 1.000001 ? enter : 3e38;
-}`;
+// The box test is the shipped one, taken from bvh.glsl with the constants it uses.
+const BVH_GLSL = readFileSync(new URL('../src/shaders/scene/bvh.glsl', import.meta.url), 'utf8');
+function glslPiece(pattern: RegExp): string {
+  const piece = BVH_GLSL.match(pattern)?.[0];
+  if (!piece) throw new Error(`bench/swiftshader-costs: ${pattern} is no longer in src/shaders/scene/bvh.glsl`);
+  return piece;
+}
+const STEP_DECLARATIONS = [
+  glslPiece(/^const float BVH_NO_HIT = .*;$/m),
+  glslPiece(/^const float BVH_BOX_EXIT_SCALE = .*;$/m),
+  glslPiece(/^float bvhBoxEntry\([^)]*\) \{\n[\s\S]*?\n\}$/m),
+].join('\n');
 const STEP_SETUP = `
   vec3 origin = vec3(0.3, 0.2, 0.1) + gl_FragCoord.xyx * 1e-4;
   vec3 dir = normalize(vec3(0.5, 0.4, -1.0) + gl_FragCoord.yxy * 1e-4);
@@ -91,8 +94,8 @@ function stepBody(parts: { tri?: boolean; box?: boolean; stack?: boolean; fetche
     bestTexel = found ? texel : bestTexel;
     barycentric = found ? e.yz / det : barycentric;` : 'bool found = isTriangle && t0.x < t1.y; best = found ? t2.z : best;'}
     triangle += isTriangle ? 3 : 0;
-    ${box ? `float enter0 = boxEntry(t0.xyz, t1.xyz, origin, invDir, best);
-    float enter1 = boxEntry(t2.xyz, t3.xyz, origin, invDir, best);` : 'float enter0 = t0.x - origin.x, enter1 = t3.y - origin.y;'}
+    ${box ? `float enter0 = bvhBoxEntry(t0.xyz, t1.xyz, origin, invDir, best);
+    float enter1 = bvhBoxEntry(t2.xyz, t3.xyz, origin, invDir, best);` : 'float enter0 = t0.x - origin.x, enter1 = t3.y - origin.y;'}
     int ref0 = int(t0.w * 100.0), ref1 = int(t1.w * 100.0), count0 = int(t2.w * 3.0), count1 = int(t3.w * 3.0);
     bool hit0 = !isTriangle && enter0 < 3e38;
     bool hit1 = !isTriangle && enter1 < 3e38;
