@@ -87,7 +87,7 @@ const mean = (v: number[]) => v.reduce((a, b) => a + b, 0) / v.length;
 
 /** Feature switches of the trace program (featureDefines' keys); default: the seed scene's. */
 type Features = Record<string, number>;
-const SEED_FEATURES: Features = featureDefines({ guides: 1, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false });
+const SEED_FEATURES: Features = featureDefines({ guides: 1, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false, instances: false });
 
 function variantSource(spec: string, root: URL, features: Features = SEED_FEATURES): string {
   if (spec.endsWith('.frag')) return readFileSync(spec, 'utf8'); // a whole trace shader, e.g. a hand-edited dump

@@ -7,6 +7,7 @@
 import type GUI from 'lil-gui';
 import type { Controller } from 'lil-gui';
 import { MAX_TRIANGLES } from '../render/bvh/pack';
+import { storedTriangles } from '../render/bvh/groups';
 import { AssetError } from '../scene/assetError';
 import { MAX_MESHES } from '../scene/limits';
 import { formatIssue } from '../scene/schema';
@@ -42,11 +43,13 @@ export async function addModelFile(app: App, file: File, keep: KeepFiles): Promi
   } catch (error) {
     return fail(error instanceof AssetError ? error.message : `cannot be read (${(error as Error)?.message ?? String(error)})`);
   }
-  const triangles = app.scene.meshes.reduce((n, m) => n + (app.assets.meshes.get(m.file)?.indices.length ?? 0) / 3, data.indices.length / 3);
-  if (triangles > MAX_TRIANGLES) return fail(`the scene's meshes would have ${triangles} triangles; the most is ${MAX_TRIANGLES}`);
   const name = fileNameFor(app, file.name, data);
   data = app.assets.meshes.get(name) ?? data;
   const mesh: Mesh = { file: name, material: { type: 'standard', color: [0.8, 0.8, 0.8], roughness: 0.5 }, ...fitMesh(data, file.name, app.scene) };
+  // A model already in the scene is stored once more only if it cannot be instanced (src/render/bvh/groups.ts).
+  const trianglesOf = (f: string) => ((f === name ? data : app.assets.meshes.get(f))?.indices.length ?? 0) / 3;
+  const triangles = storedTriangles({ ...app.scene, meshes: [...app.scene.meshes, mesh] }, trianglesOf);
+  if (triangles > MAX_TRIANGLES) return fail(`the scene's meshes would have ${triangles} triangles; the most is ${MAX_TRIANGLES}`);
   const bounds = worldBoundingSphere(mesh, data);
   const camera = frameCamera(app.scene.camera, bounds.center, bounds.radius, app.aspect);
   clearError();

@@ -10,6 +10,7 @@
  * again). Scenes without meshes upload at once.
  */
 import { packScene } from '../render/packScene';
+import { groupMeshes } from '../render/bvh/groups';
 import { buildBvhAsync } from '../render/bvh/buildAsync';
 import { bvhInputs, offerBvh } from '../render/passes/assetTextures';
 import type { PathTracer } from '../render/PathTracer';
@@ -34,7 +35,10 @@ const dataId = (data: TriangleMesh | undefined) => {
 };
 
 interface MeshState {
-  /** Everything the BVH depends on: data identity, transforms, material slots. */
+  /**
+   * Everything the BVH depends on: data identity, grouping, material slots,
+   * the copied meshes' transforms (an instance's move needs no new BVH).
+   */
   key: string;
   triangles: number;
   materials: number[];
@@ -43,7 +47,9 @@ interface MeshState {
 function meshState(scene: Scene, assets: SceneAssets): MeshState {
   const materials = scene.meshes.length ? packScene(scene).meshMaterials : [];
   const data = scene.meshes.map((m) => assets.meshes.get(m.file));
-  const key = JSON.stringify(scene.meshes.map((m, i) => [dataId(data[i]), m.position, m.rotation, m.scale, materials[i]]));
+  const groups = groupMeshes(scene);
+  const copies = groups.world.map((i) => [scene.meshes[i].position, scene.meshes[i].rotation, scene.meshes[i].scale]);
+  const key = JSON.stringify([data.map(dataId), groups, copies, materials]);
   const triangles = data.reduce((sum, d) => sum + (d ? d.indices.length / 3 : 0), 0);
   return { key, triangles, materials };
 }

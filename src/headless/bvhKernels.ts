@@ -115,7 +115,7 @@ export async function buildInWorker(positions: string, normals: string | null, i
   const start = performance.now();
   const index = fromBase64(indices);
   const mesh = { positions: fromBase64(positions), normals: normals === null ? null : fromBase64(normals), indices: new Uint32Array(index.buffer), material };
-  const packed = await buildBvhAsync([mesh]);
+  const packed = await buildBvhAsync([[mesh]]);
   lastBuilt = packed;
   const milliseconds = performance.now() - start;
   if (summaryOnly) return { texture: '', depth: packed.depth, milliseconds };

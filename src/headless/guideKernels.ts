@@ -28,7 +28,7 @@ function guideContext() {
   if (!context) {
     const gl = createContext(new OffscreenCanvas(1, 1), false);
     const kernels = Object.fromEntries(GUIDE_KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i]));
-    const defines = { ...sceneDefines(), ...featureDefines({ guides: 1, dielectric: true, environmentMap: false, meshes: false, emissiveMeshes: false }), ...kernels };
+    const defines = { ...sceneDefines(), ...featureDefines({ guides: 1, dielectric: true, environmentMap: false, meshes: false, emissiveMeshes: false, instances: false }), ...kernels };
     const program = new Program(gl, VERTEX_CHUNKS, [...SCENE_CHUNKS, { name: 'test/guide_kernels.frag', source: guideKernelFrag }], defines);
     gl.bindVertexArray(gl.createVertexArray());
     const block = gl.createBuffer();

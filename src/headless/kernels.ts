@@ -38,7 +38,7 @@ let context: { gl: WebGL2RenderingContext; program: Program } | null = null;
 function kernelContext() {
   if (!context) {
     const gl = createContext(new OffscreenCanvas(1, 1), false);
-    const defines = { ...sceneDefines(), ...featureDefines({ guides: 0, dielectric: true, environmentMap: false, meshes: false, emissiveMeshes: false }), ...Object.fromEntries(KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i])) };
+    const defines = { ...sceneDefines(), ...featureDefines({ guides: 0, dielectric: true, environmentMap: false, meshes: false, emissiveMeshes: false, instances: false }), ...Object.fromEntries(KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i])) };
     const program = new Program(gl, VERTEX_CHUNKS, [...SCENE_CHUNKS, { name: 'test/kernels.frag', source: kernelFrag }], defines);
     gl.bindVertexArray(gl.createVertexArray());
     // The scene chunks declare the SceneBlock uniform block; a draw with an

@@ -8,6 +8,7 @@
  */
 import type { Material, Scene, Vec3 } from '../scene/types';
 import { buildAliasTable } from './aliasTable';
+import { groupMeshes } from './bvh/groups';
 import { selectCausticGuides, type GuideSphere } from './causticGuides';
 import {
   BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MATERIAL_TYPES, MESH, SECTIONS, SPHERE,
@@ -24,6 +25,8 @@ export interface SceneFeatures {
   meshes: boolean;
   /** Emissive meshes (light sampling of their triangles). */
   emissiveMeshes: boolean;
+  /** Files named by several meshes, stored once and instanced (src/render/bvh/groups.ts). */
+  instances: boolean;
 }
 
 /** What packing needs to know of the scene's decoded files. */
@@ -141,6 +144,7 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     environmentMap,
     meshes: scene.meshes.length > 0,
     emissiveMeshes: meshEmitters.length > 0,
+    instances: groupMeshes(scene).shared.length > 0,
   };
   return { data, block, features, meshMaterials, meshEmitters: meshEmitters.map(({ mesh, first, count }) => ({ mesh, first, count })) };
 }

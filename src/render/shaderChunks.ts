@@ -21,6 +21,7 @@ export const SCENE_CHUNK_NAMES = [
   'generated/records.glsl',
   'scene/access.glsl',
   'scene/bvh.glsl',
+  'scene/instances.glsl',
   'scene/intersect.glsl',
   'bsdf/ggx.glsl',
   'bsdf/standard.glsl',
@@ -63,5 +64,6 @@ export function featureDefines(features: SceneFeatures): Record<string, number> 
     HAS_ENV_MAP: features.environmentMap ? 1 : 0,
     HAS_MESHES: features.meshes ? 1 : 0,
     HAS_EMISSIVE_MESHES: features.emissiveMeshes ? 1 : 0,
+    HAS_INSTANCES: features.instances ? 1 : 0,
   };
 }

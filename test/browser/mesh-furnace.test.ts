@@ -10,9 +10,10 @@
  */
 import { describe, expect, it } from 'vitest';
 import type { RenderSession } from '../../src/node/session';
-import type { Scene } from '../../src/scene/types';
+import type { Material, Scene } from '../../src/scene/types';
 import { loadFixtureScene, useRenderSession } from '../support/browser';
 import { icosphere } from '../support/icosphere';
+import { groupMeshes } from '../../src/render/bvh/groups';
 import type { TriangleMesh } from '../../src/scene/types';
 
 const SIZE = { width: 80, height: 80 };
@@ -28,15 +29,20 @@ function toObj(mesh: TriangleMesh, skip: (triangle: number) => boolean = () => f
   return new TextEncoder().encode(lines.join('\n') + '\n');
 }
 
-function furnaceScene(file: string): Scene {
+function furnaceScene(file: string, instanced = false): Scene {
   const base = loadFixtureScene('furnace');
+  const material: Material = { type: 'standard', color: [1, 1, 1], roughness: 1 };
   return {
     ...base,
     version: 2,
     image: SIZE,
     spheres: [],
     // Rotated and scaled off the axes, so edges cross pixels at every angle.
-    meshes: [{ file, material: { type: 'standard', color: [1, 1, 1], roughness: 1 }, position: [0.05, -0.03, 0], rotation: [17, 33, 5], scale: [1.1, 1.1, 1.1] }],
+    meshes: [
+      { file, material, position: [0.05, -0.03, 0], rotation: [17, 33, 5], scale: [1.1, 1.1, 1.1] },
+      // A second mesh of the same file: both are instances of one stored copy (src/render/bvh/groups.ts).
+      ...(instanced ? [{ file, material, position: [1, 1, 0.3] as [number, number, number], rotation: [-40, 10, 70] as [number, number, number], scale: [0.25, 0.3, 0.2] as [number, number, number] }] : []),
+    ],
   };
 }
 
@@ -83,6 +89,15 @@ describe('watertight furnace', () => {
   it('a closed white icosphere in a white furnace is 1 in every pixel', async () => {
     const result = await checkFurnace(session(), furnaceScene('ico.obj'), toObj(sphere));
     console.log(`mesh furnace: mean ${result.mean.toFixed(6)}, worst pixel off by ${result.worst.toExponential(2)}, tolerance ${result.tolerance.toExponential(2)}`);
+    expect(result.specks).toBe(0);
+    expect(Math.abs(result.mean - 1)).toBeLessThan(1e-3);
+  }, 120_000);
+
+  it('two instances of one stored icosphere are 1 in every pixel', async () => {
+    const scene = furnaceScene('ico.obj', true);
+    expect(groupMeshes(scene).shared).toEqual([[0, 1]]);
+    const result = await checkFurnace(session(), scene, toObj(sphere));
+    console.log(`instanced furnace: mean ${result.mean.toFixed(6)}, worst pixel off by ${result.worst.toExponential(2)}, tolerance ${result.tolerance.toExponential(2)}`);
     expect(result.specks).toBe(0);
     expect(Math.abs(result.mean - 1)).toBeLessThan(1e-3);
   }, 120_000);

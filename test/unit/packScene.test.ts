@@ -86,7 +86,7 @@ describe('packScene', () => {
     expect(ground).toMatchObject({ type: MATERIAL_TYPES.standard, roughness: expect.closeTo(0.4, 6) });
     const choice = readRecord(packed.data, SECTIONS.emitterChoices, EMITTER_CHOICE, 1);
     expect(choice.alias).toBe(0);
-    expect(packed.features).toEqual({ guides: 0, dielectric: true, environmentMap: false, meshes: false, emissiveMeshes: false });
+    expect(packed.features).toEqual({ guides: 0, dielectric: true, environmentMap: false, meshes: false, emissiveMeshes: false, instances: false });
   });
 
   it('makes an environment map an emitter picked by its power, and glass on meshes a glass feature', () => {
@@ -113,7 +113,7 @@ describe('packScene', () => {
     radius = Math.max(radius, Math.hypot(0 - c[0], 3 - c[1], 0 - c[2]) + 0.5);
     const sky = Math.PI * radius * radius * integral * 2;
     expect(environment.pdf).toBeCloseTo(sky / (sky + light), 6);
-    expect(packed.features).toEqual({ guides: 0, dielectric: true, environmentMap: true, meshes: true, emissiveMeshes: false });
+    expect(packed.features).toEqual({ guides: 0, dielectric: true, environmentMap: true, meshes: true, emissiveMeshes: false, instances: false });
     expect(readRecord(packed.data, SECTIONS.materials, MATERIAL, packed.meshMaterials[0]).type).toBe(MATERIAL_TYPES.dielectric);
     // Without the map's distribution (or with a black map) the environment is no emitter.
     expect(readRecord(packScene(withMap).block, 0, HEADER, 0)).toMatchObject({ emitterCount: 1, environmentPdf: 0 });
@@ -122,7 +122,7 @@ describe('packScene', () => {
   it('packs an empty scene with zero counts and a black environment', () => {
     const empty = packScene(parseScene({ camera }));
     expect(readRecord(empty.block, 0, HEADER, 0)).toMatchObject({ sphereCount: 0, emitterCount: 0, groundEnabled: 0, environment: [0, 0, 0] });
-    expect(empty.features).toEqual({ guides: 0, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false });
+    expect(empty.features).toEqual({ guides: 0, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false, instances: false });
   });
 });
 

@@ -14,8 +14,10 @@
 import type { TriangleMesh } from '../../scene/types';
 
 export interface BvhMeshInput extends TriangleMesh {
-  /** Material index carried by every triangle of this mesh. */
+  /** Material index carried by every triangle of this mesh (-1 in a shared group: the instance gives it). */
   material: number;
+  /** The scene mesh index its triangles carry (default: its position in the input list; -1 in a shared group). */
+  mesh?: number;
 }
 
 export interface Bvh {

@@ -5,7 +5,7 @@
  */
 import type { BvhMeshInput } from './build';
 import type { PackedBvh } from './pack';
-import { buildAndPack, type BvhWorkerResponse } from './worker';
+import { buildAndPackGroups, type BvhWorkerResponse } from './worker';
 
 let worker: Worker | null = null;
 let nextId = 1;
@@ -29,16 +29,16 @@ function startWorker(): Worker {
 }
 
 /**
- * Builds and packs a BVH over world-space meshes in a worker. The meshes'
- * arrays are copied to the worker (the caller keeps them).
+ * Builds and packs a BVH per group of meshes (src/render/bvh/groups.ts) in a
+ * worker. The meshes' arrays are copied to the worker (the caller keeps them).
  */
-export function buildBvhAsync(meshes: BvhMeshInput[]): Promise<PackedBvh> {
-  if (typeof Worker === 'undefined') return Promise.resolve().then(() => buildAndPack(meshes));
+export function buildBvhAsync(groups: BvhMeshInput[][]): Promise<PackedBvh> {
+  if (typeof Worker === 'undefined') return Promise.resolve().then(() => buildAndPackGroups(groups));
   worker ??= startWorker();
   const id = nextId++;
   return new Promise((resolve, reject) => {
     pending.set(id, { resolve, reject });
-    worker!.postMessage({ id, meshes });
+    worker!.postMessage({ id, groups });
   });
 }
 

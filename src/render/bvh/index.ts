@@ -1,6 +1,7 @@
 /** CPU side of the triangle BVH: build, pack into textures, a TypeScript traversal for tests, a worker API for the page. */
 export { buildBvh, MAX_BVH_DEPTH, MAX_LEAF_TRIANGLES, type Bvh, type BvhMeshInput } from './build';
-export { packBvh, bvhBounds, BVH_TEXTURE_WIDTH, BVH_LAYER_ROWS, MAX_TRIANGLES, type PackedBvh, type TextureData, type LayeredTextureData } from './pack';
+export { packBvh, packBvhGroups, bvhBounds, BVH_TEXTURE_WIDTH, BVH_LAYER_ROWS, MAX_TRIANGLES, type PackedBvh, type TextureData, type LayeredTextureData } from './pack';
 export { traverseBvh, bruteForce, type BvhHit } from './traverse';
-export { buildAndPack } from './worker';
+export { groupMeshes, storedTriangles, MAX_INSTANCES, type MeshGroups } from './groups';
+export { buildAndPack, buildAndPackGroups } from './worker';
 export { buildBvhAsync, stopBvhWorker } from './buildAsync';

@@ -96,10 +96,12 @@ export interface PackedBvh {
   /** Stored (interior) nodes, the root included. */
   nodeCount: number;
   triangleCount: number;
-  /** BVH triangle j -> input triangle id (meshes concatenated in input order). */
+  /** BVH triangle j -> input triangle id (the groups' meshes concatenated in input order). */
   triangleOrder: Uint32Array;
   /** The deepest leaf's depth in the build (root = 0): the traversal stack never holds more entries. */
   depth: number;
+  /** Each group's root node (packBvhGroups); the first is BVH_ROOT_NODE. */
+  roots: number[];
 }
 
 /** Storage for `texels` texels in the layout above. */
@@ -111,60 +113,95 @@ export function bvhTexture(texels: number): LayeredTextureData {
 }
 
 export function packBvh(bvh: Bvh, meshes: BvhMeshInput[]): PackedBvh {
-  const n = bvh.triangleOrder.length;
-  const meshOf = new Uint32Array(meshes.length + 1); // first input triangle of each mesh
-  meshes.forEach((m, i) => (meshOf[i + 1] = meshOf[i] + m.indices.length / 3));
-  const smoothCount = meshes.reduce((sum, m) => sum + (m.normals ? m.indices.length / 3 : 0), 0);
+  return packBvhGroups([{ bvh, meshes }]);
+}
+
+/** A group of triangles with its own BVH (src/render/bvh/groups.ts): the world's, or a shared file's in object space. */
+export interface BvhGroup {
+  bvh: Bvh;
+  meshes: BvhMeshInput[];
+}
+
+/**
+ * Packs several BVHs into one texture: their triangles one after another
+ * (group by group, BVH order within each), then every smooth triangle's
+ * normals, then the nodes. The first group's root is BVH_ROOT_NODE; each
+ * group's root node is in `roots`.
+ */
+export function packBvhGroups(groups: BvhGroup[]): PackedBvh {
+  const firstTriangle = [0];
+  groups.forEach((g, i) => firstTriangle.push(firstTriangle[i] + g.bvh.triangleOrder.length));
+  const n = firstTriangle[groups.length];
+  const smoothCount = groups.reduce((sum, g) => sum + g.meshes.reduce((s, m) => s + (m.normals ? m.indices.length / 3 : 0), 0), 0);
   const normalsEnd = normalsStart(n) + smoothCount * 3;
   if (normalsEnd > BVH_MAX_TEXELS) {
     throw new Error(`${n} triangles exceed the BVH texture limit (${MAX_TRIANGLES} smooth triangles in total)`);
   }
-  const { nodeBounds, nodeData } = bvh;
-  const isLeaf = (i: number) => nodeData[i * 2 + 1] > 0;
-  // Stored nodes: the root at BVH_ROOT_NODE, the other interior nodes (depth-first) from the first multiple of 4 texels after the normals.
+  // Stored nodes: the first group's root at BVH_ROOT_NODE, every other interior node (depth-first, group by group) from the first multiple of 4 texels after the normals.
   const firstSlot = Math.ceil(normalsEnd / BVH_NODE_TEXELS);
-  const slot = new Int32Array(bvh.nodeCount).fill(-1);
   let stored = 1;
-  slot[0] = BVH_ROOT_NODE;
-  for (let i = 1; i < bvh.nodeCount; i++) if (!isLeaf(i)) slot[i] = firstSlot + stored++ - 1;
+  const slots = groups.map(({ bvh }, g) => {
+    const slot = new Int32Array(bvh.nodeCount).fill(-1);
+    const rootIsLeaf = bvh.nodeData[1] > 0;
+    slot[0] = g === 0 ? BVH_ROOT_NODE : firstSlot + stored++ - 1;
+    for (let i = 1; i < bvh.nodeCount; i++) if (!(bvh.nodeData[i * 2 + 1] > 0)) slot[i] = firstSlot + stored++ - 1;
+    return { slot, rootIsLeaf };
+  });
   const texture = bvhTexture(Math.max(normalsEnd, (firstSlot + stored - 1) * BVH_NODE_TEXELS));
   const out = texture.data;
 
-  const writeNode = (q: number, children: [number, number]) => {
-    const o = q * BVH_NODE_TEXELS * 4;
-    children.forEach((child, c) => {
-      for (let k = 0; k < 3; k++) {
-        out[o + c * 8 + k] = nodeBounds[child * 6 + k];
-        out[o + c * 8 + 4 + k] = nodeBounds[child * 6 + 3 + k];
-      }
-      const leaf = isLeaf(child);
-      const [first, count] = [nodeData[child * 2], nodeData[child * 2 + 1]];
-      out[o + c * 4 + 3] = leaf ? triangleTexel(first) : slot[child]; // ref0, ref1 in texels 0, 1
-      out[o + 8 + c * 4 + 3] = leaf ? triangleTexel(first + count) : 0; // end0, end1 in texels 2, 3
-    });
-  };
-  if (isLeaf(0)) writeNode(BVH_ROOT_NODE, [0, 0]);
-  for (let i = 0; i < bvh.nodeCount; i++) if (!isLeaf(i)) writeNode(slot[i], [i + 1, nodeData[i * 2]]);
+  groups.forEach(({ bvh }, g) => {
+    const { nodeBounds, nodeData } = bvh;
+    const { slot, rootIsLeaf } = slots[g];
+    const isLeaf = (i: number) => nodeData[i * 2 + 1] > 0;
+    const writeNode = (q: number, children: [number, number]) => {
+      const o = q * BVH_NODE_TEXELS * 4;
+      children.forEach((child, c) => {
+        for (let k = 0; k < 3; k++) {
+          out[o + c * 8 + k] = nodeBounds[child * 6 + k];
+          out[o + c * 8 + 4 + k] = nodeBounds[child * 6 + 3 + k];
+        }
+        const leaf = isLeaf(child);
+        const first = firstTriangle[g] + nodeData[child * 2];
+        const count = nodeData[child * 2 + 1];
+        out[o + c * 4 + 3] = leaf ? triangleTexel(first) : slot[child]; // ref0, ref1 in texels 0, 1
+        out[o + 8 + c * 4 + 3] = leaf ? triangleTexel(first + count) : 0; // end0, end1 in texels 2, 3
+      });
+    };
+    if (rootIsLeaf) writeNode(slot[0], [0, 0]);
+    for (let i = 0; i < bvh.nodeCount; i++) if (!isLeaf(i)) writeNode(slot[i], [i + 1, nodeData[i * 2]]);
+  });
 
+  const triangleOrder = new Uint32Array(n);
   let normalTexel = normalsStart(n);
-  let mesh = 0;
-  for (let j = 0; j < n; j++) {
-    const id = bvh.triangleOrder[j];
-    mesh = findMesh(meshOf, id, mesh);
-    const { positions, normals, indices, material } = meshes[mesh];
-    const local = (id - meshOf[mesh]) * 3;
-    const o = triangleTexel(j) * 4;
-    for (let c = 0; c < 3; c++) {
-      const v = indices[local + c];
-      for (let k = 0; k < 3; k++) out[o + c * 4 + k] = positions[v * 3 + k];
-      if (normals) for (let k = 0; k < 3; k++) out[normalTexel * 4 + c * 4 + k] = normals[v * 3 + k];
+  let firstInput = 0;
+  groups.forEach(({ bvh, meshes }, g) => {
+    const meshOf = new Uint32Array(meshes.length + 1); // first input triangle of each mesh
+    meshes.forEach((m, i) => (meshOf[i + 1] = meshOf[i] + m.indices.length / 3));
+    let mesh = 0;
+    for (let j = 0; j < bvh.triangleOrder.length; j++) {
+      const id = bvh.triangleOrder[j];
+      const at = firstTriangle[g] + j;
+      triangleOrder[at] = firstInput + id;
+      mesh = findMesh(meshOf, id, mesh);
+      const { positions, normals, indices, material } = meshes[mesh];
+      const local = (id - meshOf[mesh]) * 3;
+      const o = triangleTexel(at) * 4;
+      for (let c = 0; c < 3; c++) {
+        const v = indices[local + c];
+        for (let k = 0; k < 3; k++) out[o + c * 4 + k] = positions[v * 3 + k];
+        if (normals) for (let k = 0; k < 3; k++) out[normalTexel * 4 + c * 4 + k] = normals[v * 3 + k];
+      }
+      out[o + 3] = material;
+      out[o + 7] = normals ? normalTexel : -1;
+      out[o + 11] = meshes[mesh].mesh ?? mesh;
+      if (normals) normalTexel += 3;
     }
-    out[o + 3] = material;
-    out[o + 7] = normals ? normalTexel : -1;
-    out[o + 11] = mesh;
-    if (normals) normalTexel += 3;
-  }
-  return { texture, nodeCount: stored, triangleCount: n, triangleOrder: bvh.triangleOrder, depth: bvh.depth };
+    firstInput += meshOf[meshes.length];
+  });
+  const roots = slots.map((s) => s.slot[0]);
+  const depth = groups.reduce((d, g) => Math.max(d, g.bvh.depth), 0);
+  return { texture, nodeCount: stored, triangleCount: n, triangleOrder, depth, roots };
 }
 
 /** The mesh holding input triangle `id`; starts from the last answer (ids often come in runs). */

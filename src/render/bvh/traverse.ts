@@ -102,16 +102,17 @@ export function traceStats(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: num
  * lasts, or else visits one node: both children's boxes, a hit leaf's
  * triangles becoming the range (both leaves: their joint range), a hit
  * child node the next node (both: the nearer, the other pushed); with
- * nothing left, the next node is popped.
+ * nothing left, the next node is popped. `root`: the group's root node
+ * (packed.roots; the first group's by default).
  */
-export function traverseBvh(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: number, anyHit = false, stats?: TraceStats): BvhHit | null {
+export function traverseBvh(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: number, anyHit = false, stats?: TraceStats, root = BVH_ROOT_NODE): BvhHit | null {
   const tex = packed.texture.data;
   const invDir = safeInverse(dir);
   const ray = shearRay(origin, dir);
   const stack: number[] = [];
   let best: BvhHit | null = null;
   let limit = tMax;
-  let node = BVH_ROOT_NODE;
+  let node = root;
   let triangle = 0;
   let end = 0; // triangles [triangle, end) pending
   while (node >= 0 || triangle < end) {

@@ -8,7 +8,7 @@
  * The layout is plain flat float arrays, so the same data could back WebGPU
  * storage buffers.
  */
-export type FieldType = 'float' | 'int' | 'vec3';
+export type FieldType = 'float' | 'int' | 'vec3' | 'vec4';
 
 export interface Field {
   name: string;
@@ -25,7 +25,7 @@ export interface RecordLayout {
   fields: Field[];
 }
 
-const SIZE: Record<FieldType, number> = { float: 1, int: 1, vec3: 3 };
+const SIZE: Record<FieldType, number> = { float: 1, int: 1, vec3: 3, vec4: 4 };
 const SWIZZLE = 'xyzw';
 
 /** Lays out `fields` in order, starting a new texel where one would not fit. */

@@ -59,6 +59,25 @@ export const EMITTER = defineRecord('Emitter', [
 export const MESH = defineRecord('MeshRecord', [['areaPdf', 'float']]);
 
 /**
+ * An instance of a BVH group (src/render/bvh/groups.ts), in the instance
+ * table (its own small texture, scene/instances.glsl): the rows of its
+ * world-to-object and object-to-world matrices (3x4: a row dotted with
+ * (x, y, z, 1)), its group's root node, and the material and mesh its
+ * triangles take (-1: each triangle's own, as in the world group).
+ */
+export const INSTANCE = defineRecord('InstanceRecord', [
+  ['toObjectX', 'vec4'],
+  ['toObjectY', 'vec4'],
+  ['toObjectZ', 'vec4'],
+  ['toWorldX', 'vec4'],
+  ['toWorldY', 'vec4'],
+  ['toWorldZ', 'vec4'],
+  ['root', 'int'],
+  ['material', 'int'],
+  ['mesh', 'int'],
+]);
+
+/**
  * Slot i of the alias table (Walker) that picks emitters in proportion to
  * power: keep i when frac(u * n) < aliasThreshold, else take `alias`.
  */
@@ -115,6 +134,7 @@ export function sceneLayoutDefines(): Record<string, number> {
     ...recordDefines(EMITTER),
     ...recordDefines(EMITTER_CHOICE),
     ...recordDefines(MESH),
+    ...recordDefines(INSTANCE),
     ...tagDefines('MATERIAL', MATERIAL_TYPES),
     ...tagDefines('EMITTER', EMITTER_KINDS),
     MATERIALS_FIRST: SECTIONS.materials,
@@ -139,5 +159,8 @@ export function sceneLayoutGlsl(): string {
     '// Generated from src/render/layout/scene.ts: do not edit.',
     ...tables.map((layout) => recordGlsl(layout, 'sceneData')),
     recordGlsl(HEADER, 'headerTexel'),
+    '#if HAS_INSTANCES',
+    recordGlsl(INSTANCE, 'instanceTexel'),
+    '#endif',
   ].join('\n');
 }

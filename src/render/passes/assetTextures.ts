@@ -1,16 +1,22 @@
 /**
  * The GPU copies of a scene's decoded files: the environment map (image and
- * sampling distribution) and the BVH over the meshes' world-space triangles.
- * Each is uploaded only when its inputs change (the map by identity; the BVH
- * when a mesh's data, transform or material slot changes), so other scene
- * edits re-upload nothing here; map rotation and intensity are uniforms.
+ * sampling distribution) and the BVH over the meshes' triangles, in groups
+ * (src/render/bvh/groups.ts): the world-space copies of meshes not
+ * instanced, and a shared file's object-space triangles once for all the
+ * meshes that name it, with the instance table. Each is uploaded only when
+ * its inputs change (the map by identity; the BVH when a mesh's data, a
+ * copied mesh's transform, a material slot or the grouping changes; moving
+ * an instance only rewrites the instance table), so other scene edits
+ * re-upload nothing here; map rotation and intensity are uniforms.
  */
 import { buildEnvironmentDistribution, type EnvironmentDistribution } from '../../scene/envmap';
 import type { SceneAssets } from '../../scene/assets';
-import { transformMesh } from '../../scene/mesh';
+import { applyMatrix, meshToWorldMatrix, transformMesh } from '../../scene/mesh';
 import type { EnvironmentImage, Scene, TriangleMesh } from '../../scene/types';
 import { buildAliasTable } from '../aliasTable';
-import { BVH_TEXTURE_WIDTH, buildBvh, packBvh, type BvhMeshInput, type PackedBvh } from '../bvh';
+import { BVH_TEXTURE_WIDTH, MAX_INSTANCES, buildAndPackGroups, groupMeshes, type BvhMeshInput, type MeshGroups, type PackedBvh } from '../bvh';
+import { INSTANCE } from '../layout/scene';
+import { packRecord } from '../layout/records';
 import { BvhTextures, uploadFloatTexture } from '../bvhTextures';
 import type { MeshEmitterSlots } from '../packScene';
 import { EnvironmentTextures } from '../environmentTextures';
@@ -20,6 +26,7 @@ import type { Program } from '../gl/program';
 const ENVIRONMENT_UNITS = { map: 2, marginal: 3, conditional: 4 };
 const BVH_UNIT = 5;
 const EMISSIVE_UNIT = 7;
+const INSTANCE_UNIT = 8;
 
 /** Distributions by image: building one takes tens of milliseconds for a 2k map. */
 const distributions = new WeakMap<EnvironmentImage, EnvironmentDistribution>();
@@ -33,14 +40,23 @@ export function environmentDistribution(image: EnvironmentImage): EnvironmentDis
   return distribution;
 }
 
-/** What the meshes' world-space triangles depend on besides the decoded data: their transforms. */
-function transformsKey(scene: Scene): string {
-  return JSON.stringify(scene.meshes.map((m) => [m.position, m.rotation, m.scale]));
+/**
+ * What the BVH depends on besides the decoded data and the material slots:
+ * the grouping and the copied (world group) meshes' transforms.
+ */
+function bvhKey(scene: Scene, groups: MeshGroups): string {
+  return JSON.stringify([groups, groups.world.map((i) => [scene.meshes[i].position, scene.meshes[i].rotation, scene.meshes[i].scale])]);
 }
 
-/** The world-space triangles the BVH is built over. */
-export function bvhInputs(scene: Scene, assets: SceneAssets, materials: readonly number[]): BvhMeshInput[] {
-  return scene.meshes.map((mesh, i) => ({ ...transformMesh(assets.meshes.get(mesh.file)!, mesh), material: materials[i] }));
+/** The BVH's groups of triangles (see groups.ts): the world group's copies (when any), then each shared file's triangles once. */
+export function bvhInputs(scene: Scene, assets: SceneAssets, materials: readonly number[]): BvhMeshInput[][] {
+  const { world, shared } = groupMeshes(scene);
+  const copies = world.map((i) => ({ ...transformMesh(assets.meshes.get(scene.meshes[i].file)!, scene.meshes[i]), material: materials[i], mesh: i }));
+  return groupInputs(copies, shared.map((users) => assets.meshes.get(scene.meshes[users[0]].file)!));
+}
+
+function groupInputs(copies: BvhMeshInput[], sharedData: TriangleMesh[]): BvhMeshInput[][] {
+  return [...(copies.length > 0 ? [copies] : []), ...sharedData.map((data) => [{ ...data, material: -1, mesh: -1 }])];
 }
 
 /**
@@ -51,7 +67,7 @@ export function bvhInputs(scene: Scene, assets: SceneAssets, materials: readonly
 let prebuilt: { key: string; data: TriangleMesh[]; packed: PackedBvh } | null = null;
 
 export function offerBvh(scene: Scene, assets: SceneAssets, materials: readonly number[], packed: PackedBvh): void {
-  prebuilt = { key: transformsKey(scene) + JSON.stringify(materials), data: scene.meshes.map((m) => assets.meshes.get(m.file)!), packed };
+  prebuilt = { key: bvhKey(scene, groupMeshes(scene)) + JSON.stringify(materials), data: scene.meshes.map((m) => assets.meshes.get(m.file)!), packed };
 }
 
 function takePrebuilt(key: string, data: TriangleMesh[]): PackedBvh | null {
@@ -68,8 +84,15 @@ export function rememberEnvironmentDistribution(image: EnvironmentImage, distrib
 
 export class AssetTextures {
   private environment: { image: EnvironmentImage; textures: EnvironmentTextures } | null = null;
-  private world: (WorldMeshes & { key: string; data: TriangleMesh[] }) | null = null;
-  private bvh: { world: WorldMeshes; key: string; textures: BvhTextures; emissive: EmissiveTriangles | null } | null = null;
+  private world: WorldMeshes | null = null;
+  private bvh: {
+    world: WorldMeshes;
+    key: string;
+    roots: number[];
+    textures: BvhTextures;
+    emissive: EmissiveTriangles | null;
+    instances: InstanceTable | null;
+  } | null = null;
 
   constructor(private readonly gl: WebGL2RenderingContext) {}
 
@@ -81,39 +104,54 @@ export class AssetTextures {
   }
 
   /**
-   * The scene's meshes in world space and their sizes (area, triangles),
-   * recomputed only when a file or a transform changes.
+   * The scene's meshes grouped (groups.ts): the world group's meshes copied
+   * into world space, each mesh's object-to-world matrix and its size (area,
+   * triangles); the copies are remade only when a file, the grouping or a
+   * copied mesh's transform changes.
    */
   worldMeshes(scene: Scene, assets: SceneAssets): WorldMeshes {
     const data = scene.meshes.map((mesh) => assets.meshes.get(mesh.file)!);
-    const key = transformsKey(scene);
+    const groups = groupMeshes(scene);
+    const key = bvhKey(scene, groups);
+    const toWorld = scene.meshes.map((mesh) => meshToWorldMatrix(mesh));
     const w = this.world;
-    if (w && w.key === key && w.data.length === data.length && w.data.every((d, i) => d === data[i])) return w;
-    const meshes = scene.meshes.map((mesh, i) => transformMesh(data[i], mesh));
-    this.world = { key, data, meshes, sizes: meshes.map((m) => ({ area: meshArea(m), triangles: m.indices.length / 3 })) };
+    if (w && w.key === key && w.data.length === data.length && w.data.every((d, i) => d === data[i])) {
+      // Only instances may have moved: their matrices and areas are new, the copies are not.
+      const sizes = w.sizes.map((size, i) => (w.meshes[i] ? size : { area: meshArea(data[i], toWorld[i]), triangles: size.triangles }));
+      this.world = { ...w, toWorld, sizes };
+      return this.world;
+    }
+    const meshes = scene.meshes.map((mesh, i) => (groups.world.includes(i) ? transformMesh(data[i], mesh) : null));
+    const sizes = meshes.map((m, i) => ({ area: m ? meshArea(m) : meshArea(data[i], toWorld[i]), triangles: data[i].indices.length / 3 }));
+    this.world = { key, data, groups, meshes, toWorld, sizes };
     return this.world;
   }
 
   /**
    * Builds and uploads the BVH of `world` (each mesh's triangles carry
-   * `materials[i]`) and the emissive-triangle table of `emitters`, unless
-   * nothing they depend on changed.
+   * `materials[i]`), its instance table and the emissive-triangle table of
+   * `emitters`, unless nothing they depend on changed.
    */
   setMeshes(world: WorldMeshes, materials: readonly number[], emitters: readonly MeshEmitterSlots[]): void {
     const key = JSON.stringify([materials, emitters]);
-    if (this.bvh && this.bvh.world === world && this.bvh.key === key) return;
+    if (this.bvh && this.bvh.world.key === world.key && this.bvh.world.data === world.data && this.bvh.key === key) {
+      this.bvh.instances?.update(instanceRecords(world, this.bvh.roots, materials));
+      this.bvh.world = world;
+      return;
+    }
     this.bvh?.textures.dispose();
     this.bvh?.emissive?.dispose();
+    this.bvh?.instances?.dispose();
     this.bvh = null;
     if (world.meshes.length === 0) return;
-    const w = this.world;
-    let packed = w === world ? takePrebuilt(w.key + JSON.stringify(materials), w.data) : null;
+    let packed = takePrebuilt(world.key + JSON.stringify(materials), world.data);
     if (!packed) {
-      const inputs = world.meshes.map((mesh, i) => ({ ...mesh, material: materials[i] }));
-      packed = packBvh(buildBvh(inputs), inputs);
+      const copies = world.groups.world.map((i) => ({ ...world.meshes[i]!, material: materials[i], mesh: i }));
+      packed = buildAndPackGroups(groupInputs(copies, world.groups.shared.map((users) => world.data[users[0]])));
     }
     const emissive = emitters.length > 0 ? new EmissiveTriangles(this.gl, world, packed.triangleOrder, emitters) : null;
-    this.bvh = { world, key, textures: new BvhTextures(this.gl, packed), emissive };
+    const instances = world.groups.shared.length > 0 ? new InstanceTable(this.gl, instanceRecords(world, packed.roots, materials)) : null;
+    this.bvh = { world, key, roots: packed.roots, textures: new BvhTextures(this.gl, packed), emissive, instances };
   }
 
   /** Sets the uniforms of the uploaded data on `program` (in use). */
@@ -127,32 +165,115 @@ export class AssetTextures {
     this.environment?.textures.bind(ENVIRONMENT_UNITS);
     this.bvh?.textures.bind(program, BVH_UNIT);
     this.bvh?.emissive?.bind(program, EMISSIVE_UNIT);
+    this.bvh?.instances?.bind(program, INSTANCE_UNIT);
   }
 
   dispose(): void {
     this.setEnvironmentMap(null);
     this.bvh?.textures.dispose();
     this.bvh?.emissive?.dispose();
+    this.bvh?.instances?.dispose();
     this.bvh = null;
   }
 }
 
 export interface WorldMeshes {
-  meshes: TriangleMesh[];
+  /** What the copies and the BVH depend on besides `data` (bvhKey). */
+  key: string;
+  /** Each scene mesh's decoded file. */
+  data: TriangleMesh[];
+  groups: MeshGroups;
+  /** Each scene mesh in world space when it is copied into the world group, null when instanced. */
+  meshes: (TriangleMesh | null)[];
+  /** Each scene mesh's object-to-world matrix (column-major 4x4). */
+  toWorld: Float64Array[];
+  /** Each scene mesh's world-space area and triangle count. */
   sizes: { area: number; triangles: number }[];
 }
 
-function triangleArea(p: Float32Array, i: Uint32Array, t: number): number {
+function triangleArea(p: ArrayLike<number>, i: Uint32Array, t: number): number {
   const [a, b, c] = [i[3 * t] * 3, i[3 * t + 1] * 3, i[3 * t + 2] * 3];
   const e1 = [p[b] - p[a], p[b + 1] - p[a + 1], p[b + 2] - p[a + 2]];
   const e2 = [p[c] - p[a], p[c + 1] - p[a + 1], p[c + 2] - p[a + 2]];
   return 0.5 * Math.hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
 }
 
-function meshArea(mesh: TriangleMesh): number {
+/** The mesh's area, in world space through `toWorld` when given. */
+function meshArea(mesh: TriangleMesh, toWorld?: Float64Array): number {
+  const positions = toWorld ? applyMatrix(toWorld, mesh.positions, null).positions : mesh.positions;
   let area = 0;
-  for (let t = 0; t < mesh.indices.length / 3; t++) area += triangleArea(mesh.positions, mesh.indices, t);
+  for (let t = 0; t < mesh.indices.length / 3; t++) area += triangleArea(positions, mesh.indices, t);
   return area;
+}
+
+/**
+ * The instance table (InstanceRecord, layout/scene.ts): the world group
+ * first when it is stored (identity, its triangles' own materials), then
+ * every mesh of each shared group with its matrices and material slot.
+ */
+function instanceRecords(world: WorldMeshes, roots: readonly number[], materials: readonly number[]): Float32Array {
+  const { groups } = world;
+  const identity = new Float64Array([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]);
+  const entries: { toWorld: Float64Array; root: number; material: number; mesh: number }[] = [];
+  if (groups.world.length > 0) entries.push({ toWorld: identity, root: roots[0], material: -1, mesh: -1 });
+  const firstShared = groups.world.length > 0 ? 1 : 0;
+  groups.shared.forEach((users, g) => {
+    for (const i of users) entries.push({ toWorld: world.toWorld[i], root: roots[firstShared + g], material: materials[i], mesh: i });
+  });
+  const out = new Float32Array(entries.length * INSTANCE.texels * 4);
+  entries.forEach((e, k) => out.set(packRecord(INSTANCE, { ...matrixRows(e.toWorld), root: e.root, material: e.material, mesh: e.mesh }), k * INSTANCE.texels * 4));
+  return out;
+}
+
+/** The rows (3x4) of an affine column-major matrix and of its inverse, as InstanceRecord fields. */
+function matrixRows(m: Float64Array): Record<string, number[]> {
+  const row = (a: ArrayLike<number>, r: number) => [a[r], a[4 + r], a[8 + r], a[12 + r]];
+  // The inverse: A^-1 = transpose(cofactors) / det for the linear part A, then the translation -A^-1 t.
+  const c = [ // cofactors, column-major (as in applyMatrix)
+    m[5] * m[10] - m[9] * m[6], m[8] * m[6] - m[4] * m[10], m[4] * m[9] - m[8] * m[5],
+    m[9] * m[2] - m[1] * m[10], m[0] * m[10] - m[8] * m[2], m[8] * m[1] - m[0] * m[9],
+    m[1] * m[6] - m[5] * m[2], m[4] * m[2] - m[0] * m[6], m[0] * m[5] - m[4] * m[1],
+  ];
+  const det = m[0] * c[0] + m[4] * c[3] + m[8] * c[6];
+  const inv = new Float64Array(16);
+  for (let r = 0; r < 3; r++) for (let col = 0; col < 3; col++) inv[col * 4 + r] = c[r * 3 + col] / det;
+  for (let r = 0; r < 3; r++) inv[12 + r] = -(inv[r] * m[12] + inv[4 + r] * m[13] + inv[8 + r] * m[14]);
+  return {
+    toObjectX: row(inv, 0), toObjectY: row(inv, 1), toObjectZ: row(inv, 2),
+    toWorldX: row(m, 0), toWorldY: row(m, 1), toWorldZ: row(m, 2),
+  };
+}
+
+/** The instance table as a one-row RGBA32F texture (scene/layout.glsl uInstances), and its count. */
+class InstanceTable {
+  private readonly texture: WebGLTexture;
+  private count = 0;
+
+  constructor(private readonly gl: WebGL2RenderingContext, records: Float32Array) {
+    this.texture = gl.createTexture()!;
+    gl.bindTexture(gl.TEXTURE_2D, this.texture);
+    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, MAX_INSTANCES * INSTANCE.texels, 1);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    this.update(records);
+  }
+
+  update(records: Float32Array): void {
+    const gl = this.gl;
+    this.count = records.length / (INSTANCE.texels * 4);
+    gl.bindTexture(gl.TEXTURE_2D, this.texture);
+    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, records.length / 4, 1, gl.RGBA, gl.FLOAT, records);
+  }
+
+  bind(program: Program, unit: number): void {
+    this.gl.activeTexture(this.gl.TEXTURE0 + unit);
+    this.gl.bindTexture(this.gl.TEXTURE_2D, this.texture);
+    program.setUniforms({ uInstances: unit, uInstanceCount: this.count }, { uInstances: 'sampler2D', uInstanceCount: 'int' });
+  }
+
+  dispose(): void {
+    this.gl.deleteTexture(this.texture);
+  }
 }
 
 /**
@@ -172,13 +293,14 @@ class EmissiveTriangles {
   ) {
     const bvhIndex = new Uint32Array(triangleOrder.length);
     triangleOrder.forEach((input, j) => (bvhIndex[input] = j));
+    // Emissive meshes are in the world group, the first: its inputs are its meshes' triangles in order.
     const firstInput: number[] = [];
-    world.sizes.reduce((sum, size, i) => ((firstInput[i] = sum), sum + size.triangles), 0);
+    world.groups.world.reduce((sum, i) => ((firstInput[i] = sum), sum + world.sizes[i].triangles), 0);
     const slots = emitters.reduce((n, e) => Math.max(n, e.first + e.count), 0);
     const width = BVH_TEXTURE_WIDTH;
     const data = new Float32Array(width * Math.max(1, Math.ceil(slots / width)) * 4);
     for (const e of emitters) {
-      const mesh = world.meshes[e.mesh];
+      const mesh = world.meshes[e.mesh]!;
       const areas = Array.from({ length: e.count }, (_, t) => triangleArea(mesh.positions, mesh.indices, t));
       const table = buildAliasTable(areas);
       for (let k = 0; k < e.count; k++) {

@@ -70,8 +70,8 @@ export class TracePass {
     russianRoulette = false,
   ) {
     this.defines = sceneDefines(sampler, russianRoulette);
-    this.program = this.programFor({ guides: 0, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false });
-    this.programFor({ guides: 1, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false });
+    this.program = this.programFor({ guides: 0, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false, instances: false });
+    this.programFor({ guides: 1, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false, instances: false });
     this.assets = new AssetTextures(gl);
     this.sceneBuffer = gl.createBuffer()!;
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);

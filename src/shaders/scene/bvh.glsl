@@ -136,8 +136,10 @@ vec3 bvhEdges(vec3 v0, vec3 v1, vec3 v2, vec3 origin, mat3 shear, out float tSca
   return e;
 }
 
-// Closest hit before tMax (anyHit false), or the first found (anyHit true: shadow rays).
-bool bvhIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit) {
+// Closest hit before tMax (anyHit false), or the first found (anyHit true:
+// shadow rays), in the BVH whose root node is `root` (BVH_ROOT_NODE, or a
+// group's root: scene/instances.glsl). `dir` need not be unit: t is in its units.
+bool bvhIntersect(int root, vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit) {
   // Zero direction components become huge (same sign): no 0 * inf = NaN in the slab test.
   vec3 invDir = (vec3(greaterThanEqual(dir, vec3(0.0))) * 2.0 - 1.0) / max(abs(dir), vec3(1e-30));
   mat3 shear = bvhShear(dir);
@@ -145,7 +147,7 @@ bool bvhIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit
   int bestTexel = -1;
   int stack[BVH_STACK_SIZE];
   int sp = 0;
-  int node = BVH_ROOT_NODE;         // the next node to visit; -1: none
+  int node = root;                  // the next node to visit; -1: none
   int triangle = 0, triangleEnd = 0; // pending triangles: texels triangle, the next, .. < triangleEnd
   do {
     bool isTriangle = triangle < triangleEnd;
@@ -203,12 +205,12 @@ bool bvhIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit
 }
 
 bool bvhClosestHit(vec3 origin, vec3 dir, float tMax, out BvhHit hit) {
-  return bvhIntersect(origin, dir, tMax, false, hit);
+  return bvhIntersect(BVH_ROOT_NODE, origin, dir, tMax, false, hit);
 }
 
 bool bvhAnyHit(vec3 origin, vec3 dir, float tMax) {
   BvhHit hit;
-  return bvhIntersect(origin, dir, tMax, true, hit);
+  return bvhIntersect(BVH_ROOT_NODE, origin, dir, tMax, true, hit);
 }
 
 BvhSurface bvhSurface(BvhHit hit) {

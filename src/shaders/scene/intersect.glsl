@@ -1,9 +1,9 @@
 // Closest-hit and any-hit queries over every shape of the scene (spheres,
 // whose records include the `lights`; the ground plane; the triangles of
-// meshes through the BVH of scene/bvh.glsl). A Hit does not depend on the
-// kind of shape: the integrator sees a point, normals and a material, and
-// asks the light interface (lights/lights.glsl) how likely light sampling
-// was to find the hit.
+// meshes through the BVH of scene/bvh.glsl, instanced or not:
+// scene/instances.glsl). A Hit does not depend on the kind of shape: the
+// integrator sees a point, normals and a material, and asks the light
+// interface (lights/lights.glsl) how likely light sampling was to find the hit.
 
 const int HIT_NONE = 0;
 const int HIT_SPHERE = 1;
@@ -94,12 +94,12 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   hit.geometricNormal = hit.normal;
   hit.twoSided = false;
 #if HAS_MESHES
-  BvhHit triangle;
-  if (bvhClosestHit(origin, direction, hit.t, triangle)) {
-    BvhSurface s = bvhSurface(triangle);
-    hit.t = triangle.t;
+  MeshHit triangle;
+  if (meshClosestHit(origin, direction, hit.t, triangle)) {
+    BvhSurface s = meshSurface(triangle);
+    hit.t = triangle.triangle.t;
     hit.kind = HIT_TRIANGLE;
-    hit.index = triangle.triangle;
+    hit.index = triangle.triangle.triangle;
     hit.position = s.position;
     hit.normal = s.shadingNormal;
     hit.geometricNormal = s.geometricNormal;
@@ -141,7 +141,7 @@ bool occluded(vec3 origin, vec3 direction, float tMax, int skipSphere) {
   }
   bool blocked = clearance < 0.0 || groundHitT(origin, direction) < tMax;
 #if HAS_MESHES
-  blocked = blocked || bvhAnyHit(origin, direction, tMax);
+  blocked = blocked || meshAnyHit(origin, direction, tMax);
 #endif
   return blocked;
 }

@@ -14,3 +14,12 @@ layout(std140) uniform SceneBlock {
   vec4 uGuides[MAX_GUIDES * GUIDE_VEC4S];  // mirror and light geometry (lights/caustic_guide.glsl)
 };
 vec4 headerTexel(int i) { return uHeader[i]; }
+
+#if HAS_INSTANCES
+// The instance table (src/render/bvh/groups.ts), uploaded with the BVH
+// (src/render/passes/assetTextures.ts): InstanceRecord r at texels
+// r * INSTANCE_RECORD_TEXELS .., uInstanceCount records.
+uniform highp sampler2D uInstances;
+uniform int uInstanceCount;
+vec4 instanceTexel(int texel) { return texelFetch(uInstances, ivec2(texel, 0), 0); }
+#endif

@@ -1,0 +1,68 @@
+/**
+ * Instancing: which meshes share one stored copy of their file's triangles.
+ *
+ * The BVH texture holds one or more triangle groups, each with its own BVH:
+ * - the world group: every mesh that is not instanced, its triangles in world
+ *   space (copied and transformed per mesh), as before instancing;
+ * - one shared group per file named by several meshes whose materials do not
+ *   emit: the file's triangles once, in object space. Each such mesh is an
+ *   instance: rays are taken into object space by its world-to-object matrix
+ *   (t is unchanged by an affine map), so the triangles are stored once
+ *   however many meshes name the file.
+ * Emissive meshes stay in the world group: light sampling picks their
+ * triangles from a table of world-space triangles (lights/mesh_emitter.glsl).
+ *
+ * The traversal visits the instances in a loop (scene/instances.glsl), each
+ * a full BVH query, so every instance costs every ray at least one node step
+ * and a ray transform: the number of instances is capped (MAX_INSTANCES,
+ * the world group included); meshes past the cap are copied into the world
+ * group instead. Scenes with no shared file compile no instance code at all.
+ */
+import type { Scene } from '../../scene/types';
+
+/** Instance records (the world group's included): the loop's most iterations per ray. */
+export const MAX_INSTANCES = 8;
+
+export interface MeshGroups {
+  /** Scene mesh indices copied into the world group, in scene order. */
+  world: number[];
+  /** Per shared file, the scene mesh indices that name it (at least two), in scene order. */
+  shared: number[][];
+}
+
+const emits = (scene: Scene, i: number) => {
+  const e = scene.meshes[i].material.emission;
+  return !!e && e.intensity > 0 && e.color.some((c) => c > 0);
+};
+
+/** Groups the scene's meshes (see above). Pure: depends only on file names and materials. */
+export function groupMeshes(scene: Scene): MeshGroups {
+  const byFile = new Map<string, number[]>();
+  scene.meshes.forEach((mesh, i) => {
+    if (emits(scene, i)) return;
+    const users = byFile.get(mesh.file);
+    if (users) users.push(i);
+    else byFile.set(mesh.file, [i]);
+  });
+  const shared: number[][] = [];
+  const instanced = new Set<number>();
+  // Room for the shared meshes' instances; one record is the world group's when any mesh is left in it.
+  let room = MAX_INSTANCES;
+  for (const users of byFile.values()) {
+    if (users.length < 2) continue;
+    const leftInWorld = scene.meshes.length - instanced.size - users.length > 0 ? 1 : 0;
+    if (users.length + leftInWorld > room) continue;
+    shared.push(users);
+    users.forEach((i) => instanced.add(i));
+    room -= users.length;
+  }
+  const world = scene.meshes.map((_, i) => i).filter((i) => !instanced.has(i));
+  return { world, shared };
+}
+
+/** Triangles stored for the scene's meshes: a shared file's once (the triangle limit counts these). */
+export function storedTriangles(scene: Scene, trianglesOf: (file: string) => number): number {
+  const { world, shared } = groupMeshes(scene);
+  const count = (i: number) => trianglesOf(scene.meshes[i].file);
+  return world.reduce((n, i) => n + count(i), 0) + shared.reduce((n, users) => n + count(users[0]), 0);
+}

@@ -1,0 +1,83 @@
+// Mesh queries of the scene: closest hit, any hit and the surface at a hit,
+// over the BVH groups of src/render/bvh/groups.ts.
+//
+// Without shared files (HAS_INSTANCES 0) there is one group, in world space:
+// these are the BVH's own queries. With them, every group is reached through
+// the instance table (scene/layout.glsl): the world group once, with an
+// identity transform, and a shared file's group once per mesh naming it. A
+// query visits the instances in turn, each with the ray taken into its
+// object space (origin and direction through the 3x4 world-to-object
+// matrix, the direction not renormalized, so t stays the world ray's and one
+// running closest t bounds them all). One call site of bvhIntersect, in the
+// loop: SwiftShader compiles a second inlined traversal at great cost.
+// Within an instance the watertight test sees one transformed ray for every
+// triangle, so shared edges stay closed.
+
+#if HAS_MESHES
+
+struct MeshHit {
+  BvhHit triangle;
+  int instance;  // index into the instance table (0 without instancing)
+};
+
+#if HAS_INSTANCES
+
+InstanceRecord loadInstance(int i) { return readInstanceRecord(i * INSTANCE_RECORD_TEXELS); }
+
+vec3 instancePoint(vec4 x, vec4 y, vec4 z, vec3 p) { return vec3(dot(x.xyz, p) + x.w, dot(y.xyz, p) + y.w, dot(z.xyz, p) + z.w); }
+vec3 instanceVector(vec4 x, vec4 y, vec4 z, vec3 v) { return vec3(dot(x.xyz, v), dot(y.xyz, v), dot(z.xyz, v)); }
+
+bool meshIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out MeshHit hit) {
+  hit.instance = -1;
+  hit.triangle = BvhHit(-1, tMax, vec2(0.0));
+  float best = tMax;
+  for (int i = 0; i < uInstanceCount; i++) {
+    InstanceRecord r = loadInstance(i);
+    vec3 o = instancePoint(r.toObjectX, r.toObjectY, r.toObjectZ, origin);
+    vec3 d = instanceVector(r.toObjectX, r.toObjectY, r.toObjectZ, dir);
+    BvhHit h;
+    bool found = bvhIntersect(r.root, o, d, best, anyHit, h);
+    best = found ? h.t : best;
+    hit.triangle.triangle = found ? h.triangle : hit.triangle.triangle;
+    hit.triangle.t = best;
+    hit.triangle.barycentric = found ? h.barycentric : hit.triangle.barycentric;
+    hit.instance = found ? i : hit.instance;
+    if (anyHit && found) break;
+  }
+  return hit.instance >= 0;
+}
+
+// The surface in world space: points by the object-to-world matrix, normals
+// by the inverse transpose of its linear part, which is the transpose of the
+// world-to-object matrix's (scales are positive: no mirroring).
+BvhSurface meshSurface(MeshHit hit) {
+  BvhSurface s = bvhSurface(hit.triangle);
+  InstanceRecord r = loadInstance(hit.instance);
+  s.position = instancePoint(r.toWorldX, r.toWorldY, r.toWorldZ, s.position);
+  mat3 normalMatrix = mat3(r.toObjectX.xyz, r.toObjectY.xyz, r.toObjectZ.xyz);  // columns: the transpose
+  s.geometricNormal = normalize(normalMatrix * s.geometricNormal);
+  s.shadingNormal = normalize(normalMatrix * s.shadingNormal);
+  s.material = r.material >= 0 ? r.material : s.material;
+  s.mesh = r.mesh >= 0 ? r.mesh : s.mesh;
+  return s;
+}
+
+#else
+
+bool meshIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out MeshHit hit) {
+  hit.instance = 0;
+  return bvhIntersect(BVH_ROOT_NODE, origin, dir, tMax, anyHit, hit.triangle);
+}
+
+BvhSurface meshSurface(MeshHit hit) { return bvhSurface(hit.triangle); }
+
+#endif
+
+bool meshClosestHit(vec3 origin, vec3 dir, float tMax, out MeshHit hit) { return meshIntersect(origin, dir, tMax, false, hit); }
+
+bool meshAnyHit(vec3 origin, vec3 dir, float tMax) {
+  MeshHit hit;
+  return meshIntersect(origin, dir, tMax, true, hit);
+}
+
+#endif

@@ -1,0 +1,182 @@
+/**
+ * Instancing (src/render/bvh/groups.ts): which meshes share one stored copy
+ * of a file's triangles, that several BVH groups packed into one texture are
+ * each a complete BVH from their own root, and that a query through an
+ * instance (the ray taken into object space, as scene/instances.glsl does)
+ * finds what brute force finds over the mesh copied into world space.
+ */
+import { readFileSync } from 'node:fs';
+import fc from 'fast-check';
+import { describe, expect, it } from 'vitest';
+import { groupMeshes, MAX_INSTANCES, storedTriangles } from '../../src/render/bvh/groups';
+import { buildBvh, type BvhMeshInput } from '../../src/render/bvh/build';
+import { packBvh, packBvhGroups, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
+import { bruteForce, traverseBvh, type Vec3 } from '../../src/render/bvh/traverse';
+import { buildAndPackGroups } from '../../src/render/bvh/worker';
+import { bvhInputs } from '../../src/render/passes/assetTextures';
+import { decodeMesh, meshToWorldMatrix, transformMesh, type MeshTransform } from '../../src/scene/mesh';
+import type { Material, Mesh, Scene, TriangleMesh } from '../../src/scene/types';
+import { parseSceneText } from '../../src/scene/schema';
+import { random, triangleSoup } from '../support/bvhScenes';
+import { icosphere } from '../support/icosphere';
+
+const white: Material = { type: 'standard', color: [1, 1, 1], roughness: 1 };
+const glowing: Material = { ...white, emission: { color: [1, 1, 1], intensity: 2 } };
+const mesh = (file: string, material: Material = white): Mesh => ({ file, material, position: [0, 0, 0], rotation: [0, 0, 0], scale: [1, 1, 1] });
+const CAMERA = { position: [0, 0, 5], target: [0, 0, 0], fov: 40 };
+const sceneWith = (meshes: Mesh[]): Scene => ({ ...parseSceneText(JSON.stringify({ version: 2, camera: CAMERA })), meshes });
+
+describe('grouping meshes for instancing', () => {
+  it('shares a file named by several non-emissive meshes; copies the rest', () => {
+    const scene = sceneWith([mesh('a'), mesh('b'), mesh('a'), mesh('c'), mesh('a'), mesh('b', glowing), mesh('b')]);
+    // b is named three times, but once by an emitter: that one is copied, the other two share.
+    expect(groupMeshes(scene)).toEqual({ world: [3, 5], shared: [[0, 2, 4], [1, 6]] });
+  });
+
+  it('emissive meshes are never instanced; a file named once is copied', () => {
+    expect(groupMeshes(sceneWith([mesh('a', glowing), mesh('a', glowing), mesh('b')]))).toEqual({ world: [0, 1, 2], shared: [] });
+  });
+
+  it('keeps the instance loop within MAX_INSTANCES records, the world group counted', () => {
+    const many = sceneWith([...Array.from({ length: MAX_INSTANCES }, () => mesh('a')), mesh('b'), mesh('c'), mesh('c')]);
+    const { world, shared } = groupMeshes(many);
+    // MAX_INSTANCES copies of a plus the world group would need MAX_INSTANCES + 1 records: a is copied, c shared.
+    expect(shared).toEqual([[MAX_INSTANCES + 1, MAX_INSTANCES + 2]]);
+    expect(world).toEqual([...Array.from({ length: MAX_INSTANCES }, (_, i) => i), MAX_INSTANCES]);
+    fc.assert(
+      fc.property(fc.array(fc.record({ file: fc.constantFrom('a', 'b', 'c', 'd'), glows: fc.boolean() }), { maxLength: 30 }), (spec) => {
+        const scene = sceneWith(spec.map((m) => mesh(m.file, m.glows ? glowing : white)));
+        const groups = groupMeshes(scene);
+        const records = groups.shared.flat().length + (groups.world.length > 0 && groups.shared.length > 0 ? 1 : 0);
+        expect(records).toBeLessThanOrEqual(MAX_INSTANCES);
+        expect([...groups.world, ...groups.shared.flat()].sort((x, y) => x - y)).toEqual(spec.map((_, i) => i));
+        for (const users of groups.shared) {
+          expect(users.length).toBeGreaterThanOrEqual(2);
+          expect(new Set(users.map((i) => scene.meshes[i].file)).size).toBe(1);
+          expect(users.every((i) => !spec[i].glows)).toBe(true);
+        }
+      }),
+    );
+  });
+
+  it('counts a shared file once against the triangle limit', () => {
+    const scene = sceneWith([mesh('a'), mesh('a'), mesh('b'), mesh('a', glowing)]);
+    const count = (f: string) => ({ a: 1000, b: 10 })[f as 'a' | 'b'];
+    expect(storedTriangles(scene, count)).toBe(1000 + 10 + 1000);
+  });
+});
+
+/** The group's triangles and nodes are all reachable from its root, and no other group's. */
+function trianglesUnder(packed: PackedBvh, root: number): Set<number> {
+  const d = packed.texture.data;
+  const found = new Set<number>();
+  const stack = [root];
+  while (stack.length) {
+    const q = stack.pop()!;
+    for (let c = 0; c < 2; c++) {
+      const ref = d[q * 16 + c * 4 + 3];
+      const end = d[q * 16 + 8 + c * 4 + 3];
+      if (end > 0) for (let t = ref; t < end; t = triangleTexel(texelTriangle(t) + 1)) found.add(texelTriangle(t));
+      else stack.push(ref);
+    }
+  }
+  return found;
+}
+const texelTriangle = (texel: number) => Math.floor(texel / 2048) * 681 + Math.floor((texel % 2048) / 3);
+
+describe('several BVH groups in one texture', () => {
+  it('each root reaches exactly its group\'s triangles; one group packs as packBvh does', () => {
+    const groups = [[triangleSoup(700, 1, 3, 2, true), triangleSoup(90, 2, 3, 5, false)], [triangleSoup(1, 3, 1, -1)], [triangleSoup(2000, 4, 1, -1, true)]];
+    const packed = buildAndPackGroups(groups);
+    const counts = groups.map((g) => g.reduce((n, m) => n + m.indices.length / 3, 0));
+    expect(packed.roots).toHaveLength(3);
+    let first = 0;
+    groups.forEach((_, g) => {
+      const under = trianglesUnder(packed, packed.roots[g]);
+      expect([...under].sort((a, b) => a - b)).toEqual(Array.from({ length: counts[g] }, (_, j) => first + j));
+      first += counts[g];
+    });
+    const single = [triangleSoup(300, 9, 2, 1, true)];
+    expect(packBvhGroups([{ bvh: buildBvh(single), meshes: single }]).texture.data).toEqual(packBvh(buildBvh(single), single).texture.data);
+  });
+});
+
+/** The ray through the inverse of `toWorld` (column-major affine), as instances.glsl takes it: t is unchanged. */
+function toObject(toWorld: Float64Array, origin: Vec3, dir: Vec3): [Vec3, Vec3] {
+  const a = [0, 1, 2].map((r) => [0, 1, 2].map((c) => toWorld[c * 4 + r]));
+  const det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  const inv = [0, 1, 2].map((r) => [0, 1, 2].map((c) => {
+    const rows = [0, 1, 2].filter((k) => k !== c);
+    const cols = [0, 1, 2].filter((k) => k !== r);
+    const minor = a[rows[0]][cols[0]] * a[rows[1]][cols[1]] - a[rows[0]][cols[1]] * a[rows[1]][cols[0]];
+    return ((r + c) % 2 ? -minor : minor) / det;
+  }));
+  const p = [0, 1, 2].map((k) => origin[k] - toWorld[12 + k]);
+  const apply = (v: number[]) => [0, 1, 2].map((r) => inv[r][0] * v[0] + inv[r][1] * v[1] + inv[r][2] * v[2]) as unknown as Vec3;
+  return [apply(p), apply([...dir])];
+}
+
+const transformArb = fc.record({
+  position: fc.tuple(fc.double({ min: -5, max: 5, noNaN: true }), fc.double({ min: -5, max: 5, noNaN: true }), fc.double({ min: -5, max: 5, noNaN: true })),
+  rotation: fc.tuple(fc.double({ min: -180, max: 180, noNaN: true }), fc.double({ min: -180, max: 180, noNaN: true }), fc.double({ min: -180, max: 180, noNaN: true })),
+  scale: fc.tuple(fc.double({ min: 0.05, max: 20, noNaN: true }), fc.double({ min: 0.05, max: 20, noNaN: true }), fc.double({ min: 0.05, max: 20, noNaN: true })),
+});
+
+describe('queries through an instance', async () => {
+  const bunny = await decodeMesh(new Uint8Array(readFileSync(new URL('../fixtures/meshes/bunny.ply', import.meta.url))), 'bunny.ply');
+
+  it('find the hit brute force finds on the world-space copy (rays aimed inside triangles)', () => {
+    const shapes: TriangleMesh[] = [bunny, icosphere(2, true)];
+    fc.assert(
+      fc.property(transformArb, fc.nat(), fc.constantFrom(0, 1), (transform: MeshTransform, seed, which) => {
+        const data = shapes[which];
+        const shared = buildAndPackGroups([[triangleSoup(50, seed, 3, 0)], [{ ...data, material: -1, mesh: -1 }]]);
+        const toWorld = meshToWorldMatrix(transform);
+        const copy: BvhMeshInput = { ...transformMesh(data, transform), material: 0 };
+        const world = packBvh(buildBvh([copy]), [copy]);
+        const r = random(seed);
+        for (let i = 0; i < 30; i++) {
+          // A point well inside a random triangle of the copy, from a random origin around it.
+          const t = Math.floor(r() * copy.indices.length / 3);
+          const [b1, b2] = [0.1 + 0.35 * r(), 0.1 + 0.35 * r()];
+          const target = [0, 1, 2].map((k) => {
+            const v = (c: number) => copy.positions[copy.indices[t * 3 + c] * 3 + k];
+            return (1 - b1 - b2) * v(0) + b1 * v(1) + b2 * v(2);
+          });
+          const origin = [0, 1, 2].map((k) => target[k] + (r() * 2 - 1) * 50) as unknown as Vec3;
+          const dir = [0, 1, 2].map((k) => target[k] - origin[k]) as unknown as Vec3;
+          const expected = bruteForce(world, origin, dir, Infinity);
+          expect(expected, 'the copy is hit').not.toBeNull();
+          const [o, d] = toObject(toWorld, origin, dir);
+          const found = traverseBvh(shared, o, d, Infinity, false, undefined, shared.roots[1]);
+          expect(found, 'the instance is hit').not.toBeNull();
+          // Same t up to the transform's rounding (float32 vertices, a ray through a 3x4 matrix).
+          expect(Math.abs(found!.t - expected!.t)).toBeLessThan(1e-4 * expected!.t + 1e-6);
+          expect(traverseBvh(shared, o, d, Infinity, true, undefined, shared.roots[1])).not.toBeNull();
+          // The other group's root does not see the instance's triangles.
+          const other = traverseBvh(shared, o, d, Infinity, false, undefined, shared.roots[0]);
+          if (other) expect(other.triangle).toBeLessThan(50);
+        }
+      }),
+      { numRuns: 40 },
+    );
+  });
+
+  it('a file named by three meshes is stored once', () => {
+    const scene = parseSceneText(
+      JSON.stringify({
+        version: 2,
+        camera: CAMERA,
+        meshes: [0, 1, 2].map((i) => ({ file: 'bunny.ply', position: [i, 0, 0], scale: 0.1 + i * 0.05, material: { color: [0.5, 0.5, 0.5], roughness: 1 } })),
+      }),
+    );
+    const assets = { maps: new Map(), meshes: new Map([['bunny.ply', bunny]]) };
+    const groups = bvhInputs(scene, assets, [0, 1, 2]);
+    expect(groups).toHaveLength(1);
+    const packed = buildAndPackGroups(groups);
+    expect(packed.triangleCount).toBe(bunny.indices.length / 3);
+    // A copy per mesh would be three times the texture.
+    const copies = buildAndPackGroups(bvhInputs({ ...scene, meshes: scene.meshes.map((m, i) => ({ ...m, file: `${i}.ply` })) }, { ...assets, meshes: new Map([0, 1, 2].map((i) => [`${i}.ply`, bunny])) }, [0, 1, 2]));
+    expect(copies.triangleCount).toBe(3 * packed.triangleCount);
+  });
+});
