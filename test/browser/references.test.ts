@@ -74,6 +74,12 @@ const SCENES: Record<string, { spp: number; block?: number; worstBlock?: number 
   // angle with the shading normal's cosine; with the geometric one, the
   // ground under it came out 10-25% off (audit, bench/results/audit-v2-2026-11-28.md).
   'emissive-tilted-normals': { spp: 512, block: 32 },
+  // Ours too: mesh instancing. bunny.ply is named by three meshes and
+  // ico-smooth-le.ply by two (different rotations, uniform and non-uniform
+  // scales, standard, glossy and dielectric materials), beside a gem and a small
+  // emissive icosphere named once: the image must not depend on whether a file
+  // named several times is stored once or copied per mesh.
+  instanced: { spp: 256 },
 };
 const BATCHES = 8;
 
