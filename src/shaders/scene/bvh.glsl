@@ -213,7 +213,20 @@ bool bvhAnyHit(vec3 origin, vec3 dir, float tMax) {
   return bvhIntersect(BVH_ROOT_NODE, origin, dir, tMax, true, hit);
 }
 
-BvhSurface bvhSurface(BvhHit hit) {
+#if HAS_INSTANCES
+// v / |v|, and 0 for 0 (a zero vertex normal stays zero, as applyMatrix keeps it).
+vec3 bvhUnitOrZero(vec3 v) {
+  float l2 = dot(v, v);
+  return l2 > 0.0 ? v * inversesqrt(l2) : vec3(0.0);
+}
+#endif
+
+// The surface at a hit. With instancing, `normalMatrix` takes the normals
+// into world space (the instance's; identity for the world group), each
+// vertex normal renormalized before interpolation as a world-space copy's
+// are (src/scene/mesh/transform.ts applyMatrix), so an instance shades as
+// its copy would; the position stays in the triangle's space.
+BvhSurface bvhSurface(BvhHit hit, mat3 normalMatrix) {
   int texel = bvhTriangleTexel(hit.triangle);
   vec4 t0 = bvhTexel(uBvh, texel);
   vec4 t1 = bvhTexel(uBvh, texel + 1);
@@ -221,11 +234,21 @@ BvhSurface bvhSurface(BvhHit hit) {
   vec3 b = vec3(1.0 - hit.barycentric.x - hit.barycentric.y, hit.barycentric);
   BvhSurface s;
   s.position = b.x * t0.xyz + b.y * t1.xyz + b.z * t2.xyz;
-  s.geometricNormal = normalize(cross(t1.xyz - t0.xyz, t2.xyz - t0.xyz));
+  vec3 faceNormal = cross(t1.xyz - t0.xyz, t2.xyz - t0.xyz);
+#if HAS_INSTANCES
+  faceNormal = normalMatrix * faceNormal;
+#endif
+  s.geometricNormal = normalize(faceNormal);
   s.shadingNormal = s.geometricNormal;
   if (t1.w >= 0.0) {
     int k = int(t1.w);
-    vec3 n = b.x * bvhTexel(uBvh, k).xyz + b.y * bvhTexel(uBvh, k + 1).xyz + b.z * bvhTexel(uBvh, k + 2).xyz;
+    vec3 n0 = bvhTexel(uBvh, k).xyz, n1 = bvhTexel(uBvh, k + 1).xyz, n2 = bvhTexel(uBvh, k + 2).xyz;
+#if HAS_INSTANCES
+    n0 = bvhUnitOrZero(normalMatrix * n0);
+    n1 = bvhUnitOrZero(normalMatrix * n1);
+    n2 = bvhUnitOrZero(normalMatrix * n2);
+#endif
+    vec3 n = b.x * n0 + b.y * n1 + b.z * n2;
     // Opposite vertex normals can cancel: keep the face normal then.
     if (dot(n, n) > 1e-12) s.shadingNormal = normalize(n);
   }
@@ -233,5 +256,7 @@ BvhSurface bvhSurface(BvhHit hit) {
   s.mesh = int(t2.w);
   return s;
 }
+
+BvhSurface bvhSurface(BvhHit hit) { return bvhSurface(hit, mat3(1.0)); }
 
 #endif

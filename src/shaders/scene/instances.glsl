@@ -47,16 +47,15 @@ bool meshIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out MeshHit h
   return hit.instance >= 0;
 }
 
-// The surface in world space: points by the object-to-world matrix, normals
-// by the inverse transpose of its linear part, which is the transpose of the
-// world-to-object matrix's (scales are positive: no mirroring).
+// The surface in world space: the point by the object-to-world matrix,
+// normals by the inverse transpose of its linear part, which is the
+// transpose of the world-to-object matrix's (scales are positive: no
+// mirroring), vertex normals renormalized each as a copy's (bvhSurface).
 BvhSurface meshSurface(MeshHit hit) {
-  BvhSurface s = bvhSurface(hit.triangle);
   InstanceRecord r = loadInstance(hit.instance);
-  s.position = instancePoint(r.toWorldX, r.toWorldY, r.toWorldZ, s.position);
   mat3 normalMatrix = mat3(r.toObjectX.xyz, r.toObjectY.xyz, r.toObjectZ.xyz);  // columns: the transpose
-  s.geometricNormal = normalize(normalMatrix * s.geometricNormal);
-  s.shadingNormal = normalize(normalMatrix * s.shadingNormal);
+  BvhSurface s = bvhSurface(hit.triangle, normalMatrix);
+  s.position = instancePoint(r.toWorldX, r.toWorldY, r.toWorldZ, s.position);
   s.material = r.material >= 0 ? r.material : s.material;
   s.mesh = r.mesh >= 0 ? r.mesh : s.mesh;
   return s;
