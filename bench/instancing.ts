@@ -1,9 +1,10 @@
 /**
  * Instancing (src/render/bvh/groups.ts) against copies, in the headless
  * renderer, interleaved in rounds so machine load hits both alike:
- *  - a row of K bunnies (test/fixtures/meshes/bunny.ply) named as one file
- *    (stored once, K instances) and under K spellings (K world-space copies
- *    in one BVH): path rate and load time of each;
+ *  - a row of K meshes of one file named as one file (stored once, K
+ *    instances) and under K names (K world-space copies in one BVH): path
+ *    rate and load time of each, for the bunny (test/fixtures/meshes/bunny.ply)
+ *    and generated spheres of ~100k and ~1M triangles;
  *  - K meshes of one generated ~1M-triangle sphere: what is stored (triangles,
  *    BVH texture bytes) instanced and as copies, and the instanced path rate
  *    (as copies, more than two exceed the triangle limit).
@@ -80,27 +81,40 @@ async function main(): Promise<void> {
   const mb = (b: number | null) => (b === null ? `over the ${MAX_TRIANGLES}-triangle limit` : `${(b / 2 ** 20).toFixed(0)} MB`);
   console.log(`${spheres} meshes of a ${sphere.indices.length / 3}-triangle file: instanced ${memory.instanced.triangles} triangles stored, ${mb(memory.instanced.bytes)}, BVH ${memory.instanced.buildMs?.toFixed(0)} ms; copies ${memory.copies.triangles} triangles, ${mb(memory.copies.bytes)}`);
 
+  // Path rate, instanced against copies: K meshes of the bunny, of a ~100k and of a ~1M-triangle sphere.
+  const cases = [
+    { name: `${k} bunnies (${bunny.indices.length / 3} triangles each)`, file: 'bunny.ply', bytes: bunnyBytes, k, scale: 0.09 },
+    { name: '3 spheres of ~100k triangles', file: 'sphere100k.ply', bytes: bumpySpherePly(100_000), k: 3, scale: 0.4 },
+    { name: '2 spheres of ~1M triangles', file: 'sphere1m.ply', bytes: bumpySpherePly(1_000_000), k: 2, scale: 0.5 },
+  ];
   const session = await openRenderSession();
-  const results: Record<string, { rate: number; loadMs: number }[]> = { instanced: [], copies: [], spheres: [] };
+  const results: Record<string, { instanced: { rate: number; loadMs: number }[]; copies: { rate: number; loadMs: number }[] }> = {};
+  let sphereRate: { rate: number; loadMs: number } | null = null;
   try {
-    const shared = row('bunny.ply', k, false, 0.09, width, height);
-    const copies = row('bunny.ply', k, true, 0.09, width, height);
-    const sphereScene = row('sphere.ply', spheres, false, 0.4, width, height);
-    const sphereFiles = { 'sphere.ply': bumpySpherePly(1_000_000) };
     for (let r = 0; r < rounds; r++) {
-      results.instanced.push(await rate(session, shared, filesFor(shared, bunnyBytes), seconds));
-      results.copies.push(await rate(session, copies, filesFor(copies, bunnyBytes), seconds));
-      if (r === 0) results.spheres.push(await rate(session, sphereScene, sphereFiles, seconds));
-      console.log(`round ${r + 1}: ${k} bunnies instanced ${results.instanced[r].rate.toFixed(3)} M paths/s, as copies ${results.copies[r].rate.toFixed(3)}`);
+      for (const c of cases) {
+        const shared = row(c.file, c.k, false, c.scale, width, height);
+        const copies = row(c.file, c.k, true, c.scale, width, height);
+        results[c.name] ??= { instanced: [], copies: [] };
+        results[c.name].instanced.push(await rate(session, shared, filesFor(shared, c.bytes), seconds));
+        results[c.name].copies.push(await rate(session, copies, filesFor(copies, c.bytes), seconds));
+        const x = results[c.name];
+        console.log(`round ${r + 1}, ${c.name}: instanced ${x.instanced[r].rate.toFixed(3)} M paths/s (load ${x.instanced[r].loadMs.toFixed(0)} ms), copies ${x.copies[r].rate.toFixed(3)} (load ${x.copies[r].loadMs.toFixed(0)} ms)`);
+      }
     }
+    const sphereScene = row('sphere.ply', spheres, false, 0.4, width, height);
+    sphereRate = await rate(session, sphereScene, { 'sphere.ply': bumpySpherePly(1_000_000) }, seconds);
   } finally {
     await session.close();
   }
   const median = (v: number[]) => [...v].sort((a, b) => a - b)[Math.floor(v.length / 2)];
-  const ratios = results.instanced.map((x, i) => x.rate / results.copies[i].rate);
-  console.log(`${k} bunnies (${bunny.indices.length / 3} triangles each) at ${width}x${height}: instanced / copies = ${median(ratios).toFixed(2)} (median of ${rounds} rounds; per round ${ratios.map((x) => x.toFixed(2)).join(', ')})`);
-  console.log(`${spheres} instances of the 1M-triangle sphere: ${results.spheres[0].rate.toFixed(3)} M paths/s, load + first sample ${results.spheres[0].loadMs.toFixed(0)} ms`);
-  console.log(`saved ${writeResult('instancing', { width, height, seconds, rounds, bunnies: k, spheres, memory, results, ratios })}`);
+  console.log(`\n| ${width}x${height} | instanced M paths/s | copies M paths/s | instanced / copies (median of ${rounds} rounds) |\n|---|---|---|---|`);
+  for (const [name, x] of Object.entries(results)) {
+    const ratios = x.instanced.map((v, i) => v.rate / x.copies[i].rate);
+    console.log(`| ${name} | ${median(x.instanced.map((v) => v.rate)).toFixed(3)} | ${median(x.copies.map((v) => v.rate)).toFixed(3)} | ${median(ratios).toFixed(2)} |`);
+  }
+  console.log(`\n${spheres} instances of the 1M-triangle sphere: ${sphereRate!.rate.toFixed(3)} M paths/s, load + first sample ${sphereRate!.loadMs.toFixed(0)} ms`);
+  console.log(`saved ${writeResult('instancing', { width, height, seconds, rounds, spheres, memory, results, sphereRate })}`);
 }
 
 main().catch((error) => {

@@ -10,7 +10,7 @@
  * again). Scenes without meshes upload at once.
  */
 import { packScene } from '../render/packScene';
-import { groupMeshes } from '../render/bvh/groups';
+import { groupMeshes, trianglesIn } from '../render/bvh/groups';
 import { buildBvhAsync } from '../render/bvh/buildAsync';
 import { bvhInputs, offerBvh } from '../render/passes/assetTextures';
 import type { PathTracer } from '../render/PathTracer';
@@ -47,7 +47,7 @@ interface MeshState {
 function meshState(scene: Scene, assets: SceneAssets): MeshState {
   const materials = scene.meshes.length ? packScene(scene).meshMaterials : [];
   const data = scene.meshes.map((m) => assets.meshes.get(m.file));
-  const groups = groupMeshes(scene);
+  const groups = groupMeshes(scene, trianglesIn(assets));
   const copies = groups.world.map((i) => [scene.meshes[i].position, scene.meshes[i].rotation, scene.meshes[i].scale]);
   const key = JSON.stringify([data.map(dataId), groups, copies, materials]);
   const triangles = data.reduce((sum, d) => sum + (d ? d.indices.length / 3 : 0), 0);

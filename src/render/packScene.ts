@@ -144,7 +144,7 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     environmentMap,
     meshes: scene.meshes.length > 0,
     emissiveMeshes: meshEmitters.length > 0,
-    instances: groupMeshes(scene).shared.length > 0,
+    instances: groupMeshes(scene, (file) => options.meshes?.[scene.meshes.findIndex((m) => m.file === file)]?.triangles ?? 0).shared.length > 0,
   };
   return { data, block, features, meshMaterials, meshEmitters: meshEmitters.map(({ mesh, first, count }) => ({ mesh, first, count })) };
 }

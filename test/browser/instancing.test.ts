@@ -10,6 +10,7 @@
  */
 import { describe, expect, it } from 'vitest';
 import { groupMeshes } from '../../src/render/bvh/groups';
+import { decodeMesh } from '../../src/scene/mesh';
 import type { Scene } from '../../src/scene/types';
 import { fixtureFiles, loadFixtureScene, useRenderSession } from '../support/browser';
 
@@ -17,9 +18,10 @@ const SIZE = { width: 160, height: 120 };
 const SPP = 16;
 
 /**
- * The `instanced` fixture (three bunnies and two ellipsoids of one icosphere,
- * non-uniform scales included), its shared files named as written (stored
- * once) or under a name per mesh (copies).
+ * The `instanced` fixture (three meshes of a coarse smooth icosphere padded
+ * to 82k triangles, so it is instanced, non-uniform scales included; three
+ * bunnies, copied), its files named as written or under a name per mesh
+ * (copies).
  */
 function fixture(shared: boolean): { scene: Scene; files: Record<string, Uint8Array> } {
   const base = loadFixtureScene('instanced');
@@ -42,8 +44,11 @@ describe('instancing', () => {
   it('meshes of one file (stored once) render as copies do', async () => {
     const shared = fixture(true);
     const copies = fixture(false);
-    expect(groupMeshes(shared.scene).shared).toEqual([[0, 1, 2], [3, 4]]);
-    expect(groupMeshes(copies.scene).shared).toEqual([]);
+    const decoded = new Map(await Promise.all(Object.entries(shared.files).map(async ([f, b]) => [f, await decodeMesh(b, f)] as const)));
+    const trianglesOf = (f: string) => decoded.get(f)!.indices.length / 3;
+    // ico-padded.ply (three meshes) is instanced; the bunny (three meshes) is too small and is copied.
+    expect(groupMeshes(shared.scene, trianglesOf).shared).toEqual([[3, 4, 5]]);
+    expect(groupMeshes(copies.scene, (f) => trianglesOf(f.replace(/^\d+-/, '../meshes/'))).shared).toEqual([]);
     const a = await render(shared.scene, shared.files);
     const b = await render(copies.scene, copies.files);
     const mean = a.reduce((s, v) => s + v, 0) / a.length;

@@ -40,8 +40,13 @@ function furnaceScene(file: string, instanced = false): Scene {
     // Rotated and scaled off the axes, so edges cross pixels at every angle.
     meshes: [
       { file, material, position: [0.05, -0.03, 0], rotation: [17, 33, 5], scale: [1.1, 1.1, 1.1] },
-      // A second mesh of the same file: both are instances of one stored copy (src/render/bvh/groups.ts).
-      ...(instanced ? [{ file, material, position: [1, 1, 0.3] as [number, number, number], rotation: [-40, 10, 70] as [number, number, number], scale: [0.25, 0.3, 0.2] as [number, number, number] }] : []),
+      // Two more meshes of the same file: with a file big enough, three instances of one stored copy (src/render/bvh/groups.ts).
+      ...(instanced
+        ? ([
+            { file, material, position: [1, 1, 0.3], rotation: [-40, 10, 70], scale: [0.25, 0.3, 0.2] },
+            { file, material, position: [-1.05, -1, 0.2], rotation: [5, -60, 20], scale: [0.2, 0.15, 0.22] },
+          ] satisfies Scene['meshes'])
+        : []),
     ],
   };
 }
@@ -93,10 +98,11 @@ describe('watertight furnace', () => {
     expect(Math.abs(result.mean - 1)).toBeLessThan(1e-3);
   }, 120_000);
 
-  it('two instances of one stored icosphere are 1 in every pixel', async () => {
-    const scene = furnaceScene('ico.obj', true);
-    expect(groupMeshes(scene).shared).toEqual([[0, 1]]);
-    const result = await checkFurnace(session(), scene, toObj(sphere));
+  it('three instances of one stored icosphere are 1 in every pixel', async () => {
+    const dense = icosphere(6, false); // 81920 triangles: big enough to be instanced, not copied
+    const scene = furnaceScene('ico6.obj', true);
+    expect(groupMeshes(scene, () => dense.indices.length / 3).shared).toEqual([[0, 1, 2]]);
+    const result = await checkFurnace(session(), scene, toObj(dense));
     console.log(`instanced furnace: mean ${result.mean.toFixed(6)}, worst pixel off by ${result.worst.toExponential(2)}, tolerance ${result.tolerance.toExponential(2)}`);
     expect(result.specks).toBe(0);
     expect(Math.abs(result.mean - 1)).toBeLessThan(1e-3);

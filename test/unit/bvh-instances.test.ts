@@ -8,7 +8,7 @@
 import { readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { groupMeshes, MAX_INSTANCES, storedTriangles } from '../../src/render/bvh/groups';
+import { groupMeshes, INSTANCE_MIN_SAVED_TRIANGLES, MAX_INSTANCES, storedTriangles } from '../../src/render/bvh/groups';
 import { buildBvh, type BvhMeshInput } from '../../src/render/bvh/build';
 import { packBvh, packBvhGroups, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
 import { bruteForce, traverseBvh, type Vec3 } from '../../src/render/bvh/traverse';
@@ -26,27 +26,37 @@ const mesh = (file: string, material: Material = white): Mesh => ({ file, materi
 const CAMERA = { position: [0, 0, 5], target: [0, 0, 0], fov: 40 };
 const sceneWith = (meshes: Mesh[]): Scene => ({ ...parseSceneText(JSON.stringify({ version: 2, camera: CAMERA })), meshes });
 
+/** Every file this big: any file named twice saves enough to be instanced. */
+const big = () => INSTANCE_MIN_SAVED_TRIANGLES;
+
 describe('grouping meshes for instancing', () => {
   it('shares a file named by several non-emissive meshes; copies the rest', () => {
     const scene = sceneWith([mesh('a'), mesh('b'), mesh('a'), mesh('c'), mesh('a'), mesh('b', glowing), mesh('b')]);
     // b is named three times, but once by an emitter: that one is copied, the other two share.
-    expect(groupMeshes(scene)).toEqual({ world: [3, 5], shared: [[0, 2, 4], [1, 6]] });
+    expect(groupMeshes(scene, big)).toEqual({ world: [3, 5], shared: [[0, 2, 4], [1, 6]] });
   });
 
   it('emissive meshes are never instanced; a file named once is copied', () => {
-    expect(groupMeshes(sceneWith([mesh('a', glowing), mesh('a', glowing), mesh('b')]))).toEqual({ world: [0, 1, 2], shared: [] });
+    expect(groupMeshes(sceneWith([mesh('a', glowing), mesh('a', glowing), mesh('b')]), big)).toEqual({ world: [0, 1, 2], shared: [] });
+  });
+
+  it('copies a file whose copies would add fewer than INSTANCE_MIN_SAVED_TRIANGLES triangles (faster)', () => {
+    const half = () => INSTANCE_MIN_SAVED_TRIANGLES / 2;
+    expect(groupMeshes(sceneWith([mesh('a'), mesh('a')]), half).shared).toEqual([]);
+    expect(groupMeshes(sceneWith([mesh('a'), mesh('a'), mesh('a')]), half).shared).toEqual([[0, 1, 2]]);
+    expect(groupMeshes(sceneWith([mesh('a'), mesh('a')]), () => INSTANCE_MIN_SAVED_TRIANGLES - 1).shared).toEqual([]);
   });
 
   it('keeps the instance loop within MAX_INSTANCES records, the world group counted', () => {
     const many = sceneWith([...Array.from({ length: MAX_INSTANCES }, () => mesh('a')), mesh('b'), mesh('c'), mesh('c')]);
-    const { world, shared } = groupMeshes(many);
+    const { world, shared } = groupMeshes(many, big);
     // MAX_INSTANCES copies of a plus the world group would need MAX_INSTANCES + 1 records: a is copied, c shared.
     expect(shared).toEqual([[MAX_INSTANCES + 1, MAX_INSTANCES + 2]]);
     expect(world).toEqual([...Array.from({ length: MAX_INSTANCES }, (_, i) => i), MAX_INSTANCES]);
     fc.assert(
       fc.property(fc.array(fc.record({ file: fc.constantFrom('a', 'b', 'c', 'd'), glows: fc.boolean() }), { maxLength: 30 }), (spec) => {
         const scene = sceneWith(spec.map((m) => mesh(m.file, m.glows ? glowing : white)));
-        const groups = groupMeshes(scene);
+        const groups = groupMeshes(scene, big);
         const records = groups.shared.flat().length + (groups.world.length > 0 && groups.shared.length > 0 ? 1 : 0);
         expect(records).toBeLessThanOrEqual(MAX_INSTANCES);
         expect([...groups.world, ...groups.shared.flat()].sort((x, y) => x - y)).toEqual(spec.map((_, i) => i));
@@ -59,10 +69,11 @@ describe('grouping meshes for instancing', () => {
     );
   });
 
-  it('counts a shared file once against the triangle limit', () => {
-    const scene = sceneWith([mesh('a'), mesh('a'), mesh('b'), mesh('a', glowing)]);
-    const count = (f: string) => ({ a: 1000, b: 10 })[f as 'a' | 'b'];
-    expect(storedTriangles(scene, count)).toBe(1000 + 10 + 1000);
+  it('counts an instanced file once against the triangle limit', () => {
+    const scene = sceneWith([mesh('a'), mesh('a'), mesh('b'), mesh('a', glowing), mesh('b')]);
+    const count = (f: string) => ({ a: INSTANCE_MIN_SAVED_TRIANGLES, b: 10 })[f as 'a' | 'b'];
+    // a: once for its two instances, once more for the emitter's copy; b is copied (too small to instance).
+    expect(storedTriangles(scene, count)).toBe(2 * INSTANCE_MIN_SAVED_TRIANGLES + 20);
   });
 });
 
@@ -162,21 +173,17 @@ describe('queries through an instance', async () => {
     );
   });
 
-  it('a file named by three meshes is stored once', () => {
+  it('a file named by three meshes is stored once, when big enough; a small one is copied', () => {
     const scene = parseSceneText(
       JSON.stringify({
         version: 2,
         camera: CAMERA,
-        meshes: [0, 1, 2].map((i) => ({ file: 'bunny.ply', position: [i, 0, 0], scale: 0.1 + i * 0.05, material: { color: [0.5, 0.5, 0.5], roughness: 1 } })),
+        meshes: [0, 1, 2].map((i) => ({ file: 'model.ply', position: [i, 0, 0], scale: 0.1 + i * 0.05, material: { color: [0.5, 0.5, 0.5], roughness: 1 } })),
       }),
     );
-    const assets = { maps: new Map(), meshes: new Map([['bunny.ply', bunny]]) };
-    const groups = bvhInputs(scene, assets, [0, 1, 2]);
-    expect(groups).toHaveLength(1);
-    const packed = buildAndPackGroups(groups);
-    expect(packed.triangleCount).toBe(bunny.indices.length / 3);
-    // A copy per mesh would be three times the texture.
-    const copies = buildAndPackGroups(bvhInputs({ ...scene, meshes: scene.meshes.map((m, i) => ({ ...m, file: `${i}.ply` })) }, { ...assets, meshes: new Map([0, 1, 2].map((i) => [`${i}.ply`, bunny])) }, [0, 1, 2]));
-    expect(copies.triangleCount).toBe(3 * packed.triangleCount);
+    const dense = icosphere(6, true); // 81920 triangles: two more copies would add 163840
+    const stored = (data: TriangleMesh) => buildAndPackGroups(bvhInputs(scene, { maps: new Map(), meshes: new Map([['model.ply', data]]) }, [0, 1, 2]));
+    expect(stored(dense).triangleCount).toBe(dense.indices.length / 3);
+    expect(stored(bunny).triangleCount).toBe(3 * (bunny.indices.length / 3));
   });
 });

@@ -14,14 +14,28 @@
  *
  * The traversal visits the instances in a loop (scene/instances.glsl), each
  * a full BVH query, so every instance costs every ray at least one node step
- * and a ray transform: the number of instances is capped (MAX_INSTANCES,
- * the world group included); meshes past the cap are copied into the world
- * group instead. Scenes with no shared file compile no instance code at all.
+ * and a ray transform, and on SwiftShader a pixel quad runs each instance's
+ * traversal until its slowest lane is done: measured (bench/instancing.ts),
+ * K instances render at 0.64-0.80 of the path rate of K copies in one BVH.
+ * So a file is instanced only where copies would cost real memory: when
+ * they would store at least INSTANCE_MIN_SAVED_TRIANGLES more triangles
+ * (about 12 MB of BVH texture); a smaller model is copied, which is faster.
+ * The number of instances is capped (MAX_INSTANCES, the world group
+ * included); meshes past the cap are copied. Scenes with no instanced file
+ * compile no instance code at all.
  */
+import type { SceneAssets } from '../../scene/assets';
 import type { Scene } from '../../scene/types';
 
 /** Instance records (the world group's included): the loop's most iterations per ray. */
 export const MAX_INSTANCES = 8;
+/** A shared file is instanced when copies would store at least this many more triangles than one copy. */
+export const INSTANCE_MIN_SAVED_TRIANGLES = 100_000;
+
+/** Triangles of a decoded file, by its name as the scene writes it (0 when not loaded). */
+export type TriangleCount = (file: string) => number;
+
+export const trianglesIn = (assets: SceneAssets): TriangleCount => (file) => (assets.meshes.get(file)?.indices.length ?? 0) / 3;
 
 export interface MeshGroups {
   /** Scene mesh indices copied into the world group, in scene order. */
@@ -35,8 +49,12 @@ const emits = (scene: Scene, i: number) => {
   return !!e && e.intensity > 0 && e.color.some((c) => c > 0);
 };
 
-/** Groups the scene's meshes (see above). Pure: depends only on file names and materials. */
-export function groupMeshes(scene: Scene): MeshGroups {
+/**
+ * Groups the scene's meshes (see above). Pure: depends only on file names,
+ * materials and the files' triangle counts. `minSaved`: the threshold (tests
+ * lower it to instance small models).
+ */
+export function groupMeshes(scene: Scene, trianglesOf: TriangleCount, minSaved = INSTANCE_MIN_SAVED_TRIANGLES): MeshGroups {
   const byFile = new Map<string, number[]>();
   scene.meshes.forEach((mesh, i) => {
     if (emits(scene, i)) return;
@@ -49,7 +67,7 @@ export function groupMeshes(scene: Scene): MeshGroups {
   // Room for the shared meshes' instances; one record is the world group's when any mesh is left in it.
   let room = MAX_INSTANCES;
   for (const users of byFile.values()) {
-    if (users.length < 2) continue;
+    if (users.length < 2 || (users.length - 1) * trianglesOf(scene.meshes[users[0]].file) < minSaved) continue;
     const leftInWorld = scene.meshes.length - instanced.size - users.length > 0 ? 1 : 0;
     if (users.length + leftInWorld > room) continue;
     shared.push(users);
@@ -61,8 +79,8 @@ export function groupMeshes(scene: Scene): MeshGroups {
 }
 
 /** Triangles stored for the scene's meshes: a shared file's once (the triangle limit counts these). */
-export function storedTriangles(scene: Scene, trianglesOf: (file: string) => number): number {
-  const { world, shared } = groupMeshes(scene);
+export function storedTriangles(scene: Scene, trianglesOf: TriangleCount): number {
+  const { world, shared } = groupMeshes(scene, trianglesOf);
   const count = (i: number) => trianglesOf(scene.meshes[i].file);
   return world.reduce((n, i) => n + count(i), 0) + shared.reduce((n, users) => n + count(users[0]), 0);
 }

@@ -14,7 +14,7 @@ import type { SceneAssets } from '../../scene/assets';
 import { applyMatrix, meshToWorldMatrix, transformMesh } from '../../scene/mesh';
 import type { EnvironmentImage, Scene, TriangleMesh } from '../../scene/types';
 import { buildAliasTable } from '../aliasTable';
-import { BVH_TEXTURE_WIDTH, MAX_INSTANCES, buildAndPackGroups, groupMeshes, type BvhMeshInput, type MeshGroups, type PackedBvh } from '../bvh';
+import { BVH_TEXTURE_WIDTH, MAX_INSTANCES, buildAndPackGroups, groupMeshes, trianglesIn, type BvhMeshInput, type MeshGroups, type PackedBvh } from '../bvh';
 import { INSTANCE } from '../layout/scene';
 import { packRecord } from '../layout/records';
 import { BvhTextures, uploadFloatTexture } from '../bvhTextures';
@@ -50,7 +50,7 @@ function bvhKey(scene: Scene, groups: MeshGroups): string {
 
 /** The BVH's groups of triangles (see groups.ts): the world group's copies (when any), then each shared file's triangles once. */
 export function bvhInputs(scene: Scene, assets: SceneAssets, materials: readonly number[]): BvhMeshInput[][] {
-  const { world, shared } = groupMeshes(scene);
+  const { world, shared } = groupMeshes(scene, trianglesIn(assets));
   const copies = world.map((i) => ({ ...transformMesh(assets.meshes.get(scene.meshes[i].file)!, scene.meshes[i]), material: materials[i], mesh: i }));
   return groupInputs(copies, shared.map((users) => assets.meshes.get(scene.meshes[users[0]].file)!));
 }
@@ -67,7 +67,7 @@ function groupInputs(copies: BvhMeshInput[], sharedData: TriangleMesh[]): BvhMes
 let prebuilt: { key: string; data: TriangleMesh[]; packed: PackedBvh } | null = null;
 
 export function offerBvh(scene: Scene, assets: SceneAssets, materials: readonly number[], packed: PackedBvh): void {
-  prebuilt = { key: bvhKey(scene, groupMeshes(scene)) + JSON.stringify(materials), data: scene.meshes.map((m) => assets.meshes.get(m.file)!), packed };
+  prebuilt = { key: bvhKey(scene, groupMeshes(scene, trianglesIn(assets))) + JSON.stringify(materials), data: scene.meshes.map((m) => assets.meshes.get(m.file)!), packed };
 }
 
 function takePrebuilt(key: string, data: TriangleMesh[]): PackedBvh | null {
@@ -111,7 +111,7 @@ export class AssetTextures {
    */
   worldMeshes(scene: Scene, assets: SceneAssets): WorldMeshes {
     const data = scene.meshes.map((mesh) => assets.meshes.get(mesh.file)!);
-    const groups = groupMeshes(scene);
+    const groups = groupMeshes(scene, trianglesIn(assets));
     const key = bvhKey(scene, groups);
     const toWorld = scene.meshes.map((mesh) => meshToWorldMatrix(mesh));
     const w = this.world;

@@ -51,6 +51,9 @@
 #ifndef BVH_ROOT_NODE
 #define BVH_ROOT_NODE 511
 #endif
+#ifndef HAS_INSTANCES
+#define HAS_INSTANCES 0
+#endif
 
 uniform highp sampler2DArray uBvh;
 
@@ -139,11 +142,12 @@ vec3 bvhEdges(vec3 v0, vec3 v1, vec3 v2, vec3 origin, mat3 shear, out float tSca
 // Closest hit before tMax (anyHit false), or the first found (anyHit true:
 // shadow rays), in the BVH whose root node is `root` (BVH_ROOT_NODE, or a
 // group's root: scene/instances.glsl). `dir` need not be unit: t is in its units.
-bool bvhIntersect(int root, vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit) {
+// The traversal itself: the first texel of the closest triangle hit before
+// `best` (or the first found, anyHit), -1 for none; `best` becomes its t.
+// `shear` is bvhShear(dir).
+int bvhFindTexel(int root, vec3 origin, vec3 dir, mat3 shear, bool anyHit, inout float best) {
   // Zero direction components become huge (same sign): no 0 * inf = NaN in the slab test.
   vec3 invDir = (vec3(greaterThanEqual(dir, vec3(0.0))) * 2.0 - 1.0) / max(abs(dir), vec3(1e-30));
-  mat3 shear = bvhShear(dir);
-  float best = tMax;
   int bestTexel = -1;
   int stack[BVH_STACK_SIZE];
   int sp = 0;
@@ -155,9 +159,7 @@ bool bvhIntersect(int root, vec3 origin, vec3 dir, float tMax, bool anyHit, out 
     vec4 t0, t1, t2, t3;
     bvhTexels4(texel, t0, t1, t2, t3);
 
-    // As a triangle: the watertight test. (The barycentrics are computed
-    // once after the loop: kept per step, they cost SwiftShader's compiler
-    // 0.8 s more for the trace shader.)
+    // As a triangle: the watertight test (the barycentrics: bvhHitAt).
     float tScaled;
     vec3 e = bvhEdges(t0.xyz, t1.xyz, t2.xyz, origin, shear, tScaled);
     float det = e.x + e.y + e.z;
@@ -195,13 +197,27 @@ bool bvhIntersect(int root, vec3 origin, vec3 dir, float tMax, bool anyHit, out 
     node = anyHit && found ? -1 : node;
     triangleEnd = anyHit && found ? 0 : triangleEnd;
   } while (node >= 0 || triangle < triangleEnd);
-  int triangleIndex = (bestTexel >> BVH_TEXTURE_WIDTH_LOG2) * BVH_ROW_TRIANGLES + (bestTexel & ((1 << BVH_TEXTURE_WIDTH_LOG2) - 1)) / 3;
+  return bestTexel;
+}
+
+// The hit on the triangle at `texel` (-1: none) at distance t: its index and
+// barycentrics, computed once after the traversal (kept per step, they cost
+// SwiftShader's compiler 0.8 s more for the trace shader).
+BvhHit bvhHitAt(int texel, float t, vec3 origin, mat3 shear) {
+  int triangleIndex = (texel >> BVH_TEXTURE_WIDTH_LOG2) * BVH_ROW_TRIANGLES + (texel & ((1 << BVH_TEXTURE_WIDTH_LOG2) - 1)) / 3;
   vec4 v0, v1, v2, v3;
-  bvhTexels4(max(bestTexel, 0), v0, v1, v2, v3);
+  bvhTexels4(max(texel, 0), v0, v1, v2, v3);
   float tScaled;
   vec3 e = bvhEdges(v0.xyz, v1.xyz, v2.xyz, origin, shear, tScaled);
-  hit = BvhHit(bestTexel < 0 ? -1 : triangleIndex, best, e.yz / (e.x + e.y + e.z));
-  return bestTexel >= 0;
+  return BvhHit(texel < 0 ? -1 : triangleIndex, t, e.yz / (e.x + e.y + e.z));
+}
+
+bool bvhIntersect(int root, vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit) {
+  mat3 shear = bvhShear(dir);
+  float best = tMax;
+  int texel = bvhFindTexel(root, origin, dir, shear, anyHit, best);
+  hit = bvhHitAt(texel, best, origin, shear);
+  return texel >= 0;
 }
 
 bool bvhClosestHit(vec3 origin, vec3 dir, float tMax, out BvhHit hit) {

@@ -8,7 +8,7 @@
 // query visits the instances in turn, each with the ray taken into its
 // object space (origin and direction through the 3x4 world-to-object
 // matrix, the direction not renormalized, so t stays the world ray's and one
-// running closest t bounds them all). One call site of bvhIntersect, in the
+// running closest t bounds them all). One call site of the traversal, in the
 // loop: SwiftShader compiles a second inlined traversal at great cost.
 // Within an instance the watertight test sees one transformed ray for every
 // triangle, so shared edges stay closed.
@@ -27,24 +27,40 @@ InstanceRecord loadInstance(int i) { return readInstanceRecord(i * INSTANCE_RECO
 vec3 instancePoint(vec4 x, vec4 y, vec4 z, vec3 p) { return vec3(dot(x.xyz, p) + x.w, dot(y.xyz, p) + y.w, dot(z.xyz, p) + z.w); }
 vec3 instanceVector(vec4 x, vec4 y, vec4 z, vec3 v) { return vec3(dot(x.xyz, v), dot(y.xyz, v), dot(z.xyz, v)); }
 
+// The ray in instance i's object space (the world-to-object rows only: the
+// loop reads 3 of the record's texels, not all 7).
+void instanceRay(int i, vec3 origin, vec3 dir, out vec3 o, out vec3 d) {
+  int first = i * INSTANCE_RECORD_TEXELS;
+  vec4 x = instanceTexel(first + INSTANCE_RECORD_TO_OBJECT_X_TEXEL);
+  vec4 y = instanceTexel(first + INSTANCE_RECORD_TO_OBJECT_Y_TEXEL);
+  vec4 z = instanceTexel(first + INSTANCE_RECORD_TO_OBJECT_Z_TEXEL);
+  o = instancePoint(x, y, z, origin);
+  d = instanceVector(x, y, z, dir);
+}
+
+// Each instance's traversal finds only a texel and t; the barycentrics are
+// computed once, for the closest instance's ray (bvhHitAt), not per instance.
 bool meshIntersect(vec3 origin, vec3 dir, float tMax, bool anyHit, out MeshHit hit) {
-  hit.instance = -1;
-  hit.triangle = BvhHit(-1, tMax, vec2(0.0));
   float best = tMax;
+  int bestTexel = -1;
+  int bestInstance = -1;
+  vec3 o, d;
   for (int i = 0; i < uInstanceCount; i++) {
-    InstanceRecord r = loadInstance(i);
-    vec3 o = instancePoint(r.toObjectX, r.toObjectY, r.toObjectZ, origin);
-    vec3 d = instanceVector(r.toObjectX, r.toObjectY, r.toObjectZ, dir);
-    BvhHit h;
-    bool found = bvhIntersect(r.root, o, d, best, anyHit, h);
-    best = found ? h.t : best;
-    hit.triangle.triangle = found ? h.triangle : hit.triangle.triangle;
-    hit.triangle.t = best;
-    hit.triangle.barycentric = found ? h.barycentric : hit.triangle.barycentric;
-    hit.instance = found ? i : hit.instance;
-    if (anyHit && found) break;
+    instanceRay(i, origin, dir, o, d);
+    int root = int(instanceTexel(i * INSTANCE_RECORD_TEXELS + INSTANCE_RECORD_ROOT_TEXEL).x);
+    int texel = bvhFindTexel(root, o, d, bvhShear(d), anyHit, best);
+    bestTexel = texel >= 0 ? texel : bestTexel;
+    bestInstance = texel >= 0 ? i : bestInstance;
+    if (anyHit && texel >= 0) break;
   }
-  return hit.instance >= 0;
+  hit.instance = bestInstance;
+  if (anyHit) {
+    hit.triangle = BvhHit(-1, best, vec2(0.0));
+  } else {
+    instanceRay(max(bestInstance, 0), origin, dir, o, d);
+    hit.triangle = bvhHitAt(bestTexel, best, o, bvhShear(d));
+  }
+  return bestInstance >= 0;
 }
 
 // The surface in world space: the point by the object-to-world matrix,
