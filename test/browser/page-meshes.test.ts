@@ -3,12 +3,17 @@
  * is added as a fitted mesh and framed; a click at the image centre selects
  * it; a drag moves it over its ground plane; the panel edits its material;
  * Delete removes it and Ctrl+Z brings it back; a corrupt model changes
- * nothing and names `meshes[i].file`; the bundled bunny example renders.
+ * nothing and names `meshes[i].file`; a big model opened twice is stored
+ * once, so moving one of its meshes needs no BVH build; the bundled bunny
+ * example renders.
  */
-import { readFileSync } from 'node:fs';
+import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import type { Page } from 'playwright-core';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { bumpySpherePly } from '../../bench/meshGen';
 import { decodeMesh } from '../../src/scene/mesh';
 import { meshBounds } from '../../src/scene/picking';
 import { canvasPixels, canvasPoint, drag, meanAbsDifference, openPage, savedScene, spp, waitForRestart, waitForSpp, watchRestarts, usePageHarness } from '../support/page';
@@ -94,6 +99,35 @@ describe('meshes on the page', () => {
     expect(await alert.textContent()).toMatch(/meshes\[1\]\.file: "broken\.ply"/);
     expect(await savedScene(page)).toEqual(unchanged);
     expect(await spp(page)).toBeGreaterThanOrEqual(sppBefore); // accumulation was not restarted
+    expect(errors).toEqual([]);
+    await page.close();
+  }, 180_000);
+
+  it('a model opened twice is stored once: moving one of its meshes builds no new BVH', async () => {
+    // 120k triangles: a second mesh of it would add enough to be instanced (src/render/bvh/groups.ts).
+    const file = join(mkdtempSync(join(tmpdir(), 'instanced-')), 'sphere.ply');
+    writeFileSync(file, bumpySpherePly(120_000));
+    const { page, errors } = await openPage(harness(), { minSpp: 1 });
+    for (let n = 1; n <= 2; n++) {
+      await page.setInputFiles('#file', file);
+      await page.waitForFunction((count) => document.body.dataset.meshes === 'ready' && (document.body.dataset.meshBuildMs ?? '') !== '' && document.querySelectorAll('.lil-root').length > 0 && new RegExp(`Selected mesh ${count}`).test(document.body.textContent ?? ''), n);
+    }
+    const meshes = await meshesOf(page);
+    expect(meshes.map((m) => m.file)).toEqual(['sphere.ply', 'sphere.ply']);
+    await waitForSpp(page, 1);
+    // A sentinel the page overwrites only when the BVH worker finishes a build.
+    await page.evaluate(() => (document.body.dataset.meshBuildMs = 'none'));
+    const restarts = await watchRestarts(page);
+    const centre = await canvasPoint(page, 0.5, 0.5);
+    await page.mouse.click(centre.x, centre.y);
+    expect(await selectionTitle(page)).toMatch(/Selected mesh/);
+    await drag(page, centre, 60, 0);
+    const moved = await meshesOf(page);
+    expect(moved[0].position.concat(moved[1].position)).not.toEqual(meshes[0].position.concat(meshes[1].position));
+    await waitForRestart(restarts);
+    await waitForSpp(page, 1);
+    expect(await page.evaluate(() => document.body.dataset.meshBuildMs), 'no BVH was built for the move').toBe('none');
+    expect(await page.evaluate(() => document.body.dataset.meshes)).toBe('ready');
     expect(errors).toEqual([]);
     await page.close();
   }, 180_000);
