@@ -6,7 +6,7 @@
  */
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { applyMatrix, meshToWorldMatrix, transformMesh } from '../../src/scene/mesh/transform';
+import { applyMatrix, inverseAffine, meshToWorldMatrix, transformMesh } from '../../src/scene/mesh/transform';
 
 const apply = (m: Float64Array, p: number[]) => Array.from(applyMatrix(m, p, null).positions);
 const close = (a: number[], b: number[]) => a.forEach((v, i) => expect(Math.abs(v - b[i])).toBeLessThan(1e-12));
@@ -47,5 +47,20 @@ describe('meshToWorldMatrix', () => {
     const mirror = Float64Array.of(-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1);
     expect(applyMatrix(mirror, mesh.positions, null).mirrored).toBe(true);
     expect(Array.from(transformMesh(mesh, { scale: 1 }).indices)).toEqual([0, 1, 2]);
+  });
+});
+
+describe('inverseAffine', () => {
+  it('takes every point back where the matrix took it (instances: world to object)', () => {
+    const angle = fc.double({ min: -360, max: 360, noNaN: true });
+    const factor = fc.double({ min: 0.01, max: 100, noNaN: true });
+    const coordinate = fc.double({ min: -100, max: 100, noNaN: true });
+    fc.assert(
+      fc.property(fc.tuple(coordinate, coordinate, coordinate), fc.tuple(angle, angle, angle), fc.tuple(factor, factor, factor), fc.tuple(coordinate, coordinate, coordinate), (position, rotation, scale, p) => {
+        const m = meshToWorldMatrix({ position, rotation, scale });
+        const back = apply(inverseAffine(m), apply(m, p));
+        back.forEach((v, k) => expect(Math.abs(v - p[k])).toBeLessThan(1e-9 * (1 + Math.abs(p[k])) * Math.max(...scale) / Math.min(...scale)));
+      }),
+    );
   });
 });

@@ -11,7 +11,7 @@
  */
 import { buildEnvironmentDistribution, type EnvironmentDistribution } from '../../scene/envmap';
 import type { SceneAssets } from '../../scene/assets';
-import { applyMatrix, meshToWorldMatrix, transformMesh } from '../../scene/mesh';
+import { applyMatrix, inverseAffine, meshToWorldMatrix, transformMesh } from '../../scene/mesh';
 import type { EnvironmentImage, Scene, TriangleMesh } from '../../scene/types';
 import { buildAliasTable } from '../aliasTable';
 import { BVH_TEXTURE_WIDTH, MAX_INSTANCES, buildAndPackGroups, groupMeshes, trianglesIn, type BvhMeshInput, type MeshGroups, type PackedBvh } from '../bvh';
@@ -228,16 +228,7 @@ function instanceRecords(world: WorldMeshes, roots: readonly number[], materials
 /** The rows (3x4) of an affine column-major matrix and of its inverse, as InstanceRecord fields. */
 function matrixRows(m: Float64Array): Record<string, number[]> {
   const row = (a: ArrayLike<number>, r: number) => [a[r], a[4 + r], a[8 + r], a[12 + r]];
-  // The inverse: A^-1 = transpose(cofactors) / det for the linear part A, then the translation -A^-1 t.
-  const c = [ // cofactors, column-major (as in applyMatrix)
-    m[5] * m[10] - m[9] * m[6], m[8] * m[6] - m[4] * m[10], m[4] * m[9] - m[8] * m[5],
-    m[9] * m[2] - m[1] * m[10], m[0] * m[10] - m[8] * m[2], m[8] * m[1] - m[0] * m[9],
-    m[1] * m[6] - m[5] * m[2], m[4] * m[2] - m[0] * m[6], m[0] * m[5] - m[4] * m[1],
-  ];
-  const det = m[0] * c[0] + m[4] * c[3] + m[8] * c[6];
-  const inv = new Float64Array(16);
-  for (let r = 0; r < 3; r++) for (let col = 0; col < 3; col++) inv[col * 4 + r] = c[r * 3 + col] / det;
-  for (let r = 0; r < 3; r++) inv[12 + r] = -(inv[r] * m[12] + inv[4 + r] * m[13] + inv[8 + r] * m[14]);
+  const inv = inverseAffine(m);
   return {
     toObjectX: row(inv, 0), toObjectY: row(inv, 1), toObjectZ: row(inv, 2),
     toWorldX: row(m, 0), toWorldY: row(m, 1), toWorldZ: row(m, 2),

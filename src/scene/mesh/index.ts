@@ -14,7 +14,7 @@ import { decodePly } from './ply';
 
 export type { ResourceResolver } from './gltf';
 export { encodePly } from './plyEncode';
-export { meshToWorldMatrix, transformMesh, applyMatrix, type MeshTransform } from './transform';
+export { meshToWorldMatrix, transformMesh, applyMatrix, inverseAffine, type MeshTransform } from './transform';
 
 export const MESH_EXTENSIONS = ['.obj', '.ply', '.gltf', '.glb'] as const;
 

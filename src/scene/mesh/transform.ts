@@ -50,6 +50,27 @@ export interface TransformedVertices {
   mirrored: boolean;
 }
 
+/** The cofactor matrix of the upper 3x3 of `m` (column-major 3x3: det * its inverse transpose) and its determinant. */
+function cofactors(m: Mat4): { c: number[]; det: number } {
+  const c = [
+    m[5] * m[10] - m[9] * m[6], m[8] * m[6] - m[4] * m[10], m[4] * m[9] - m[8] * m[5],
+    m[9] * m[2] - m[1] * m[10], m[0] * m[10] - m[8] * m[2], m[8] * m[1] - m[0] * m[9],
+    m[1] * m[6] - m[5] * m[2], m[4] * m[2] - m[0] * m[6], m[0] * m[5] - m[4] * m[1],
+  ];
+  return { c, det: m[0] * c[0] + m[4] * c[3] + m[8] * c[6] };
+}
+
+/** The inverse of an affine column-major 4x4 (world to object for a mesh's to_world). */
+export function inverseAffine(m: Mat4): Float64Array {
+  const { c, det } = cofactors(m);
+  // A^-1 = transpose(cofactors) / det: row r, column k of the inverse is cofactor (k, r) = c[r * 3 + k].
+  const inv = new Float64Array(16);
+  for (let r = 0; r < 3; r++) for (let k = 0; k < 3; k++) inv[k * 4 + r] = c[r * 3 + k] / det;
+  for (let r = 0; r < 3; r++) inv[12 + r] = -(inv[r] * m[12] + inv[4 + r] * m[13] + inv[8 + r] * m[14]);
+  inv[15] = 1;
+  return inv;
+}
+
 /** Points by `m`, normals by the inverse transpose of its upper 3x3, renormalized (a zero normal stays zero). */
 export function applyMatrix(m: Mat4, positions: ArrayLike<number>, normals: ArrayLike<number> | null): TransformedVertices {
   const count = Math.floor(positions.length / 3);
@@ -62,13 +83,8 @@ export function applyMatrix(m: Mat4, positions: ArrayLike<number>, normals: Arra
     outP[i * 3 + 1] = m[1] * x + m[5] * y + m[9] * z + m[13];
     outP[i * 3 + 2] = m[2] * x + m[6] * y + m[10] * z + m[14];
   }
-  // Cofactor matrix (column-major) = det * inverse transpose: the same directions, no division.
-  const c = [
-    m[5] * m[10] - m[9] * m[6], m[8] * m[6] - m[4] * m[10], m[4] * m[9] - m[8] * m[5],
-    m[9] * m[2] - m[1] * m[10], m[0] * m[10] - m[8] * m[2], m[8] * m[1] - m[0] * m[9],
-    m[1] * m[6] - m[5] * m[2], m[4] * m[2] - m[0] * m[6], m[0] * m[5] - m[4] * m[1],
-  ];
-  const det = m[0] * c[0] + m[4] * c[3] + m[8] * c[6];
+  // Cofactor matrix = det * inverse transpose: the same directions, no division.
+  const { c, det } = cofactors(m);
   const sign = det < 0 ? -1 : 1;
   let outN: Float64Array | null = null;
   if (normals) {
