@@ -3,13 +3,20 @@
  * (1 subdivision, 80 triangles), flat and smooth, as OBJ, PLY (ASCII,
  * binary little- and big-endian), glTF (embedded buffer), GLB and
  * Draco-compressed GLB, plus a glTF whose nodes transform and instance the
- * mesh. Run: npx tsx scripts/make-mesh-fixtures.ts
+ * mesh. Also ico-padded.ply (binary little-endian, encodePly), the instancing
+ * fixture's shared file: the smooth 1-subdivision icosphere (80 triangles,
+ * coarse, so shading depends visibly on how an instance's vertex normals are
+ * interpolated) around a hidden 6-subdivision icosphere of radius 0.5 (81920
+ * triangles, vertex normals too: a PLY has normals for every vertex or none)
+ * that pads the file past the instancing threshold (groups.ts,
+ * INSTANCE_MIN_SAVED_TRIANGLES). Run: npx tsx scripts/make-mesh-fixtures.ts
  */
 import { writeFileSync } from 'node:fs';
 import { Document, WebIO, type Node } from '@gltf-transform/core';
 import { KHRDracoMeshCompression } from '@gltf-transform/extensions';
 import draco3d from 'draco3dgltf';
 import { icosphere } from '../test/support/icosphere';
+import { encodePly } from '../src/scene/mesh';
 import type { TriangleMesh } from '../src/scene/types';
 
 const OUT = new URL('../test/fixtures/meshes/', import.meta.url);
@@ -129,6 +136,20 @@ async function main(): Promise<void> {
     doc.createNode('parent').setTranslation([0, 3, 0]).addChild(make().setRotation([0, 0, Math.SQRT1_2, Math.SQRT1_2])),
   ]);
   write('ico-nodes.gltf', await embeddedGltf(io, nodes));
+  write('ico-padded.ply', encodePly(padded()));
+}
+
+/** The coarse smooth icosphere with a dense one of radius 0.5 hidden inside it. */
+function padded(): TriangleMesh {
+  const outer = icosphere(1, true);
+  const inner = icosphere(6, true);
+  const join = <T extends Float32Array | Uint32Array>(a: T, b: T, out: T): T => (out.set(a), out.set(b, a.length), out);
+  const n = outer.positions.length + inner.positions.length;
+  return {
+    positions: join(outer.positions, inner.positions.map((x) => x * 0.5), new Float32Array(n)),
+    normals: join(outer.normals!, inner.normals!, new Float32Array(n)),
+    indices: join(outer.indices, inner.indices.map((v) => v + outer.positions.length / 3), new Uint32Array(outer.indices.length + inner.indices.length)),
+  };
 }
 
 await main();
