@@ -74,11 +74,12 @@ const SCENES: Record<string, { spp: number; block?: number; worstBlock?: number 
   // angle with the shading normal's cosine; with the geometric one, the
   // ground under it came out 10-25% off (audit, bench/results/audit-v2-2026-11-28.md).
   'emissive-tilted-normals': { spp: 512, block: 32 },
-  // Ours too: mesh instancing. bunny.ply is named by three meshes and
-  // ico-smooth-le.ply by two (different rotations, uniform and non-uniform
-  // scales, standard, glossy and dielectric materials), beside a gem and a small
-  // emissive icosphere named once: the image must not depend on whether a file
-  // named several times is stored once or copied per mesh.
+  // Ours too: mesh instancing. ico-padded.ply (82k triangles: a coarse smooth
+  // icosphere around a hidden dense one) is named by three meshes and stored
+  // once, instanced (src/render/bvh/groups.ts); bunny.ply, named by three, is
+  // too small and is copied per mesh (different rotations, uniform and
+  // non-uniform scales, standard, glossy and dielectric materials), beside a
+  // gem and a small emissive icosphere named once.
   instanced: { spp: 256 },
 };
 const BATCHES = 8;
