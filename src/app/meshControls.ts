@@ -7,7 +7,7 @@
 import type GUI from 'lil-gui';
 import type { Controller } from 'lil-gui';
 import { MAX_TRIANGLES } from '../render/bvh/pack';
-import { storedTriangles } from '../render/bvh/groups';
+import { groupMeshes, storedTriangles, trianglesIn } from '../render/bvh/groups';
 import { AssetError } from '../scene/assetError';
 import { MAX_MESHES } from '../scene/limits';
 import { formatIssue } from '../scene/schema';
@@ -90,13 +90,20 @@ function sameTriangles(a: TriangleMesh, b: TriangleMesh): boolean {
 
 // ---------------------------------------------------------------- panel
 
+/** How the BVH stores mesh i's triangles (src/render/bvh/groups.ts), for the panel. */
+export function storedAs(app: App, i: number): string {
+  const users = groupMeshes(app.scene, trianglesIn(app.assets)).shared.find((u) => u.includes(i));
+  return users ? `once, for meshes ${users.map((k) => k + 1).join(', ')}` : 'a copy of its own';
+}
+
 /** The selected mesh's controls: its file, material (as a sphere's) and transform. */
 export function addMeshControls(folder: GUI, app: App, mesh: () => Mesh, tracked: <T extends Controller>(c: T) => T): void {
   folder.add({ file: mesh().file }, 'file').name('file').disable();
-  // What the model costs: its triangles (each mesh adds its own copy to the BVH).
+  // What the model costs: its triangles, and whether the BVH holds them once for several meshes or a copy for this one.
   const decoded = app.assets.meshes.get(mesh().file);
   const triangles = decoded ? (decoded.indices.length / 3).toLocaleString('en-US') : 'not loaded';
   folder.add({ triangles }, 'triangles').name('triangles').disable();
+  folder.add({ stored: storedAs(app, app.scene.meshes.indexOf(mesh())) }, 'stored').name('stored').disable();
   addSphereMaterialControls(folder, app, mesh, tracked);
   const axis = (label: string, vector: () => Vec3, k: number, range?: [number, number, number]) => {
     const target = {

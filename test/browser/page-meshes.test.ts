@@ -60,6 +60,8 @@ describe('meshes on the page', () => {
     const icoTriangles = (await decodeMesh(new Uint8Array(readFileSync(ICO)), 'ico-smooth.obj')).indices.length / 3;
     const trianglesField = page.locator('.lil-controller').filter({ has: page.locator('.lil-name', { hasText: /^triangles$/ }) }).locator('input');
     expect(await trianglesField.inputValue(), 'the panel tells the triangle count').toBe(icoTriangles.toLocaleString('en-US'));
+    const storedField = page.locator('.lil-controller').filter({ has: page.locator('.lil-name', { hasText: /^stored$/ }) }).locator('input');
+    expect(await storedField.inputValue()).toBe('a copy of its own');
 
     // Drag it sideways: it moves over the horizontal plane (x changes, y does not).
     await drag(page, centre, 40, 0);
@@ -114,6 +116,8 @@ describe('meshes on the page', () => {
     }
     const meshes = await meshesOf(page);
     expect(meshes.map((m) => m.file)).toEqual(['sphere.ply', 'sphere.ply']);
+    const storedField = page.locator('.lil-controller').filter({ has: page.locator('.lil-name', { hasText: /^stored$/ }) }).locator('input');
+    expect(await storedField.inputValue(), 'the panel tells how the mesh is stored').toBe('once, for meshes 1, 2');
     await waitForSpp(page, 1);
     // A sentinel the page overwrites only when the BVH worker finishes a build.
     await page.evaluate(() => (document.body.dataset.meshBuildMs = 'none'));
