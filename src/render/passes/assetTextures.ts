@@ -116,13 +116,13 @@ export class AssetTextures {
     const toWorld = scene.meshes.map((mesh) => meshToWorldMatrix(mesh));
     const w = this.world;
     if (w && w.key === key && w.data.length === data.length && w.data.every((d, i) => d === data[i])) {
-      // Only instances may have moved: their matrices and areas are new, the copies are not.
-      const sizes = w.sizes.map((size, i) => (w.meshes[i] ? size : { area: meshArea(data[i], toWorld[i]), triangles: size.triangles }));
+      // Only instances may have moved: their matrices and sizes are new, the copies are not.
+      const sizes = w.sizes.map((size, i) => (w.meshes[i] ? size : instanceSize(data[i], toWorld[i])));
       this.world = { ...w, toWorld, sizes };
       return this.world;
     }
     const meshes = scene.meshes.map((mesh, i) => (groups.world.includes(i) ? transformMesh(data[i], mesh) : null));
-    const sizes = meshes.map((m, i) => ({ area: m ? meshArea(m) : meshArea(data[i], toWorld[i]), triangles: data[i].indices.length / 3 }));
+    const sizes = meshes.map((m, i) => (m ? { area: meshArea(m), triangles: m.indices.length / 3 } : instanceSize(data[i], toWorld[i])));
     this.world = { key, data, groups, meshes, toWorld, sizes };
     return this.world;
   }
@@ -196,6 +196,21 @@ function triangleArea(p: ArrayLike<number>, i: Uint32Array, t: number): number {
   const e1 = [p[b] - p[a], p[b + 1] - p[a + 1], p[b + 2] - p[a + 2]];
   const e2 = [p[c] - p[a], p[c + 1] - p[a + 1], p[c + 2] - p[a + 2]];
   return 0.5 * Math.hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
+}
+
+/**
+ * An instance's size. Its area is computed only if read: only emitters need
+ * areas, and instances never emit (groups.ts), while transforming a big
+ * model's vertices on every move would cost the page tens of milliseconds.
+ */
+function instanceSize(data: TriangleMesh, toWorld: Float64Array): { area: number; triangles: number } {
+  let area: number | undefined;
+  return {
+    triangles: data.indices.length / 3,
+    get area() {
+      return (area ??= meshArea(data, toWorld));
+    },
+  };
 }
 
 /** The mesh's area, in world space through `toWorld` when given. */
