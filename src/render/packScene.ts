@@ -8,7 +8,7 @@
  */
 import type { Material, Scene, Vec3 } from '../scene/types';
 import { buildAliasTable } from './aliasTable';
-import { groupMeshes } from './bvh/groups';
+import type { MeshGroups } from './bvh/groups';
 import { selectCausticGuides, type GuideSphere } from './causticGuides';
 import {
   BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MATERIAL_TYPES, MESH, SECTIONS, SPHERE,
@@ -35,6 +35,8 @@ export interface PackOptions {
   environmentIntegral?: number;
   /** World-space surface area and triangle count of each of scene.meshes (decoded and transformed). */
   meshes?: readonly { area: number; triangles: number }[];
+  /** How the meshes are stored (src/render/bvh/groups.ts), as the BVH was built: instances need their shader code. */
+  groups?: MeshGroups;
 }
 
 /** The emissive-triangle slots of an emissive mesh (see layout/scene.ts EMITTER). */
@@ -144,7 +146,7 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     environmentMap,
     meshes: scene.meshes.length > 0,
     emissiveMeshes: meshEmitters.length > 0,
-    instances: groupMeshes(scene, (file) => options.meshes?.[scene.meshes.findIndex((m) => m.file === file)]?.triangles ?? 0).shared.length > 0,
+    instances: (options.groups?.shared.length ?? 0) > 0,
   };
   return { data, block, features, meshMaterials, meshEmitters: meshEmitters.map(({ mesh, first, count }) => ({ mesh, first, count })) };
 }

@@ -109,7 +109,7 @@ export class TracePass {
     this.assets.setEnvironmentMap(map);
     const world = this.assets.worldMeshes(scene, assets);
     const environmentIntegral = map ? environmentDistribution(map).integral : undefined;
-    const packed = packScene(scene, { environmentIntegral, meshes: world.sizes });
+    const packed = packScene(scene, { environmentIntegral, meshes: world.sizes, groups: world.groups });
     this.assets.setMeshes(world, packed.meshMaterials, packed.meshEmitters);
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
     gl.bufferSubData(gl.UNIFORM_BUFFER, 0, packed.block);
