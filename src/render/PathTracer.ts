@@ -22,7 +22,7 @@ import { AovPass } from './passes/aov';
 import { DisplayPass, type DisplayOptions } from './passes/display';
 import { TracePass } from './passes/trace';
 import type { SamplerKind } from './sampling';
-import { TileLayout } from './tiles';
+import { TileLayout, type TileRun } from './tiles';
 
 export interface PathTracerOptions {
   /** Render resolution; defaults to the scene's image size. */
@@ -341,23 +341,29 @@ export class PathTracer {
    */
   private drawTiles(r: Resources, most: number): number {
     const pass = this.pass!;
-    const layout = this.tiles;
-    const perDraw = Math.max(1, Math.floor(this.pathsPerDraw / layout.pixelsPerTile));
-    const end = Math.min(layout.count, pass.next + Math.max(0, most));
+    const end = Math.min(this.tiles.count, pass.next + Math.max(0, most));
     const start = pass.next;
-    while (pass.next < end) {
-      const run = { layout, first: pass.next, count: Math.min(perDraw, end - pass.next) };
+    for (const run of this.tileRuns(start, end)) {
       r.trace.draw(r.sums, this.samples, 1, this.seed, run);
       if (pass.aov) r.aov!.draw(r.trace, 1, this.seed, run);
-      pass.next += run.count;
     }
-    if (pass.next === layout.count) {
+    pass.next = end;
+    if (pass.next === this.tiles.count) {
       r.sums.swap();
       this.samples += 1;
       if (pass.aov) r.aov!.commit(1);
       this.pass = null;
     }
     return end - start;
+  }
+
+  /** Tiles [first, end) of the layout in runs of at most pathsPerDraw paths: one draw each. */
+  private tileRuns(first: number, end: number): TileRun[] {
+    const layout = this.tiles;
+    const perDraw = Math.max(1, Math.floor(this.pathsPerDraw / layout.pixelsPerTile));
+    const runs: TileRun[] = [];
+    for (let next = first; next < end; next += perDraw) runs.push({ layout, first: next, count: Math.min(perDraw, end - next) });
+    return runs;
   }
 
   /**
@@ -385,7 +391,6 @@ export class PathTracer {
     const aov = (r.aov ??= new AovPass(this.gl, this.size.width, this.size.height, this.sampler));
     if (this.pass) this.pass.aov = false;
     let missing = Math.min(this.aovSamples, Math.max(1, this.samples)) - aov.samples;
-    const layout = this.tiles;
     while (missing > 0) {
       const n = Math.min(missing, this.samplesPerFullDraw());
       if (n >= 1) {
@@ -393,10 +398,7 @@ export class PathTracer {
         missing -= n;
         continue;
       }
-      const perDraw = Math.max(1, Math.floor(this.pathsPerDraw / layout.pixelsPerTile));
-      for (let first = 0; first < layout.count; first += perDraw) {
-        aov.draw(r.trace, 1, this.seed, { layout, first, count: Math.min(perDraw, layout.count - first) });
-      }
+      for (const run of this.tileRuns(0, this.tiles.count)) aov.draw(r.trace, 1, this.seed, run);
       aov.commit(1);
       missing -= 1;
     }
