@@ -50,13 +50,19 @@ function bvhKey(scene: Scene, groups: MeshGroups): string {
 
 /** The BVH's groups of triangles (see groups.ts): the world group's copies (when any), then each shared file's triangles once. */
 export function bvhInputs(scene: Scene, assets: SceneAssets, materials: readonly number[]): BvhMeshInput[][] {
-  const { world, shared } = groupMeshes(scene, trianglesIn(assets));
-  const copies = world.map((i) => ({ ...transformMesh(assets.meshes.get(scene.meshes[i].file)!, scene.meshes[i]), material: materials[i], mesh: i }));
-  return groupInputs(copies, shared.map((users) => assets.meshes.get(scene.meshes[users[0]].file)!));
+  const data = (i: number) => assets.meshes.get(scene.meshes[i].file)!;
+  return groupInputs(groupMeshes(scene, trianglesIn(assets)), (i) => transformMesh(data(i), scene.meshes[i]), data, materials);
 }
 
-function groupInputs(copies: BvhMeshInput[], sharedData: TriangleMesh[]): BvhMeshInput[][] {
-  return [...(copies.length > 0 ? [copies] : []), ...sharedData.map((data) => [{ ...data, material: -1, mesh: -1 }])];
+/**
+ * The inputs of the BVH groups: the copies (`copy(i)`, world space) tagged
+ * with their material slot and mesh, when any; then each shared file's
+ * triangles (`data(i)` of its first mesh) once, untagged (its instances
+ * carry material and mesh).
+ */
+function groupInputs(groups: MeshGroups, copy: (i: number) => TriangleMesh, data: (i: number) => TriangleMesh, materials: readonly number[]): BvhMeshInput[][] {
+  const copies = groups.world.map((i) => ({ ...copy(i), material: materials[i], mesh: i }));
+  return [...(copies.length > 0 ? [copies] : []), ...groups.shared.map((users) => [{ ...data(users[0]), material: -1, mesh: -1 }])];
 }
 
 /**
@@ -146,8 +152,7 @@ export class AssetTextures {
     if (world.meshes.length === 0) return;
     let packed = takePrebuilt(world.key + JSON.stringify(materials), world.data);
     if (!packed) {
-      const copies = world.groups.world.map((i) => ({ ...world.meshes[i]!, material: materials[i], mesh: i }));
-      packed = buildAndPackGroups(groupInputs(copies, world.groups.shared.map((users) => world.data[users[0]])));
+      packed = buildAndPackGroups(groupInputs(world.groups, (i) => world.meshes[i]!, (i) => world.data[i], materials));
     }
     const emissive = emitters.length > 0 ? new EmissiveTriangles(this.gl, world, packed.triangleOrder, emitters) : null;
     const instances = world.groups.shared.length > 0 ? new InstanceTable(this.gl, instanceRecords(world, packed.roots, materials)) : null;
