@@ -10,7 +10,7 @@ import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
 import { groupMeshes, INSTANCE_MIN_SAVED_TRIANGLES, MAX_INSTANCES, storedTriangles } from '../../src/render/bvh/groups';
 import { buildBvh, type BvhMeshInput } from '../../src/render/bvh/build';
-import { packBvh, packBvhGroups, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
+import { BVH_NODE_TEXELS, packBvh, packBvhGroups, triangleAt, type PackedBvh } from '../../src/render/bvh/pack';
 import { bruteForce, traverseBvh, type Vec3 } from '../../src/render/bvh/traverse';
 import { buildAndPackGroups } from '../../src/render/bvh/worker';
 import { bvhInputs } from '../../src/render/passes/assetTextures';
@@ -85,15 +85,14 @@ function trianglesUnder(packed: PackedBvh, root: number): Set<number> {
   while (stack.length) {
     const q = stack.pop()!;
     for (let c = 0; c < 2; c++) {
-      const ref = d[q * 16 + c * 4 + 3];
-      const end = d[q * 16 + 8 + c * 4 + 3];
-      if (end > 0) for (let t = ref; t < end; t = triangleTexel(texelTriangle(t) + 1)) found.add(texelTriangle(t));
+      const o = q * BVH_NODE_TEXELS * 4;
+      const [ref, end] = [d[o + c * 4 + 3], d[o + 8 + c * 4 + 3]];
+      if (end > 0) for (let t = triangleAt(ref); t < triangleAt(end); t++) found.add(t);
       else stack.push(ref);
     }
   }
   return found;
 }
-const texelTriangle = (texel: number) => Math.floor(texel / 2048) * 681 + Math.floor((texel % 2048) / 3);
 
 describe('several BVH groups in one texture', () => {
   it('each root reaches exactly its group\'s triangles; one group packs as packBvh does', () => {
