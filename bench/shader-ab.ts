@@ -20,6 +20,7 @@ import { relativeMse, type LinearImage } from '../src/node/imageMetrics';
 import { openRenderSession, type LoadOptions } from '../src/node/session';
 import { assembleChunks, featureDefines, sceneDefines, TRACE_CHUNK_NAMES } from '../src/render/shaderChunks';
 import { buildShader } from '../src/render/gl/shaderSource';
+import { BASE_FEATURES } from '../src/render/packScene';
 import { parseSceneText } from '../src/scene/schema';
 import { decodePfm } from '../src/image/pfm';
 import { projectRoot, renderFor } from './common';
@@ -87,7 +88,7 @@ const mean = (v: number[]) => v.reduce((a, b) => a + b, 0) / v.length;
 
 /** Feature switches of the trace program (featureDefines' keys); default: the seed scene's. */
 type Features = Record<string, number>;
-const SEED_FEATURES: Features = featureDefines({ guides: 1, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false, instances: false });
+const SEED_FEATURES: Features = featureDefines({ ...BASE_FEATURES, guides: 1 });
 
 function variantSource(spec: string, root: URL, features: Features = SEED_FEATURES): string {
   if (spec.endsWith('.frag')) return readFileSync(spec, 'utf8'); // a whole trace shader, e.g. a hand-edited dump

@@ -10,6 +10,7 @@ import { MAX_LIGHTS, MAX_SPHERES } from '../scene/limits';
 import { cameraRay } from '../scene/camera';
 import { pickObject, pickSurface, projectSphere, type MeshLookup, type ObjectHit, type ObjectKind } from '../scene/picking';
 import type { Camera, Scene, Vec3 } from '../scene/types';
+import { defaultMaterial } from '../materials/registry';
 import { History } from './history';
 import { LiveDenoiser } from './liveDenoise';
 import { worldBoundingSphere } from './meshFit';
@@ -178,7 +179,7 @@ export class App {
     const { target } = this.scene.camera;
     const floor = this.scene.ground ? this.scene.ground.height : target[1] - 0.5;
     this.edit((s) =>
-      s.spheres.push({ center: [target[0], floor + 0.5, target[2]], radius: 0.5, material: { type: 'standard', color: [0.8, 0.8, 0.8], roughness: 0.5 } }),
+      s.spheres.push({ center: [target[0], floor + 0.5, target[2]], radius: 0.5, material: { ...defaultMaterial(), roughness: 0.5 } }),
     );
     this.select({ kind: 'sphere', index: this.scene.spheres.length - 1 });
   }

@@ -1,47 +1,29 @@
 /**
- * The selected sphere's or mesh's material controls (scene format version 2): the
- * material type (standard or dielectric), its color or tint, roughness, the
- * dielectric's index of refraction, and emission. The ground keeps the
- * panel's standard-only controls: the format forbids glass and emission there.
+ * The selected sphere's or mesh's material controls: the material's kind,
+ * the kind's own controls (its description's `controls`, as data:
+ * src/materials/<kind>/kind.ts) and emission. The ground keeps the panel's
+ * color and roughness (every kind has them; no emission there).
  *
  * The edits themselves are pure functions of a material, so they are tested
  * without a page; the controls only wire them into `app.live`.
  */
 import type GUI from 'lil-gui';
 import type { Controller } from 'lil-gui';
+import type { MaterialControl } from '../materials/kind';
+import { kindLabel, MATERIAL_TYPE_NAMES, materialControls, switchMaterialType } from '../materials/registry';
 import { hexToLinear, linearToHex } from '../scene/color';
-import { MAX_IOR, MIN_IOR } from '../scene/limits';
 import type { Emission, Material, MaterialType, Vec3 } from '../scene/types';
 import type { App } from './App';
+
+export { switchMaterialType };
 
 /** A sphere or a mesh: anything with a material. */
 type Sphere = { material: Material };
 
-export const MATERIAL_TYPES: readonly MaterialType[] = ['standard', 'dielectric'];
+export const MATERIAL_TYPES: readonly MaterialType[] = MATERIAL_TYPE_NAMES as readonly MaterialType[];
 
-/** Clear glass, what "make it glass" means: untinted, smooth, ior of window glass. */
-const NEW_GLASS = { color: [1, 1, 1] as Vec3, roughness: 0, ior: 1.5 };
 const WHITE: Vec3 = [1, 1, 1];
 const MAX_EMISSION_INTENSITY = 100;
-
-/**
- * The material after switching `current` to type `to`. Emission is kept.
- * With `remembered` (the sphere's last material of that type in this
- * session) its parameters come back, so switching back and forth loses
- * nothing. Otherwise standard -> dielectric gives clear glass (a standard
- * albedo used as a per-crossing tint would make dark, saturated glass), and
- * dielectric -> standard keeps the tint as the color and the roughness.
- */
-export function switchMaterialType(current: Material, to: MaterialType, remembered?: Material): Material {
-  if (current.type === to) return structuredClone(current);
-  const emission = current.emission ? { emission: structuredClone(current.emission) } : {};
-  if (remembered?.type === to) {
-    const { emission: _dropped, ...parameters } = structuredClone(remembered);
-    return { ...parameters, ...emission };
-  }
-  if (to === 'dielectric') return { type: 'dielectric', color: [...NEW_GLASS.color], roughness: NEW_GLASS.roughness, ior: NEW_GLASS.ior, ...emission };
-  return { type: 'standard', color: [...current.color], roughness: current.roughness, ...emission };
-}
 
 /**
  * Sets the emitted intensity. 0 removes the `emission` key (no emission is
@@ -82,8 +64,8 @@ export function addSphereMaterialControls(
   tracked: <T extends Controller>(controller: T) => T,
 ): void {
   const material = () => sphere().material;
-  const edit = (mutate: (m: Material) => void) => app.live(() => mutate(material()));
-  const isGlass = material().type === 'dielectric';
+  const edit = (mutate: (m: Record<string, unknown>) => void) => app.live(() => mutate(material() as unknown as Record<string, unknown>));
+  const labels = Object.fromEntries(MATERIAL_TYPES.map((t) => [kindLabel(t), t]));
   tracked(folder.add({
     get type() { return material().type; },
     set type(to: MaterialType) {
@@ -94,22 +76,37 @@ export function addSphereMaterialControls(
         s.material = switchMaterialType(s.material, to, aside.byType[to]);
       });
     },
-  }, 'type', [...MATERIAL_TYPES]).name('material'));
-  tracked(folder.addColor({
-    get color() { return linearToHex(material().color); },
-    set color(v: string) { edit((m) => (m.color = hexToLinear(v))); },
-  }, 'color').name(isGlass ? 'tint' : 'color'));
-  tracked(folder.add({
-    get roughness() { return material().roughness; },
-    set roughness(v: number) { edit((m) => (m.roughness = v)); },
-  }, 'roughness', 0, 1, 0.01));
-  if (isGlass) {
-    tracked(folder.add({
-      get ior() { const m = material(); return m.type === 'dielectric' ? m.ior : NEW_GLASS.ior; },
-      set ior(v: number) { edit((m) => { if (m.type === 'dielectric') m.ior = v; }); },
-    }, 'ior', MIN_IOR, MAX_IOR, 0.01));
-  }
+  }, 'type', labels).name('material'));
+  for (const control of materialControls(material())) tracked(addKindControl(folder, control, material, edit));
   addEmissionControls(folder, app, sphere, tracked);
+}
+
+/** One control of a kind's description (MaterialControl) on the current material. */
+function addKindControl(
+  folder: GUI,
+  control: MaterialControl,
+  material: () => Material,
+  edit: (mutate: (m: Record<string, unknown>) => void) => void,
+): Controller {
+  const value = () => (material() as unknown as Record<string, unknown>)[control.key];
+  if (control.control === 'color') {
+    return folder.addColor({
+      get value() { return linearToHex(value() as Vec3); },
+      set value(v: string) { edit((m) => (m[control.key] = hexToLinear(v))); },
+    }, 'value').name(control.label);
+  }
+  if (control.control === 'number') {
+    return folder.add({
+      get value() { return value() as number; },
+      set value(v: number) { edit((m) => (m[control.key] = v)); },
+    }, 'value', control.min, control.max, control.step).name(control.label);
+  }
+  const get = control.get as ((m: Material) => string) | undefined;
+  const set = control.set as ((m: Material, option: string) => void) | undefined;
+  return folder.add({
+    get value() { return get ? get(material()) : String(value()); },
+    set value(v: string) { edit((m) => (set ? set(m as unknown as Material, v) : (m[control.key] = v))); },
+  }, 'value', [...control.options]).name(control.label);
 }
 
 function addEmissionControls(folder: GUI, app: App, sphere: () => Sphere, tracked: <T extends Controller>(controller: T) => T): void {

@@ -9,6 +9,7 @@ import type { Controller } from 'lil-gui';
 import { MAX_TRIANGLES } from '../render/bvh/pack';
 import { groupMeshes, storedTriangles, trianglesIn } from '../render/bvh/groups';
 import { AssetError } from '../scene/assetError';
+import { defaultMaterial } from '../materials/registry';
 import { MAX_MESHES } from '../scene/limits';
 import { formatIssue } from '../scene/schema';
 import { encodePly, MESH_EXTENSIONS } from '../scene/mesh';
@@ -45,7 +46,7 @@ export async function addModelFile(app: App, file: File, keep: KeepFiles): Promi
   }
   const name = fileNameFor(app, file.name, data);
   data = app.assets.meshes.get(name) ?? data;
-  const mesh: Mesh = { file: name, material: { type: 'standard', color: [0.8, 0.8, 0.8], roughness: 0.5 }, ...fitMesh(data, file.name, app.scene) };
+  const mesh: Mesh = { file: name, material: { ...defaultMaterial(), roughness: 0.5 }, ...fitMesh(data, file.name, app.scene) };
   // A model already in the scene is stored once more only if it cannot be instanced (src/render/bvh/groups.ts).
   const trianglesOf = (f: string) => ((f === name ? data : app.assets.meshes.get(f))?.indices.length ?? 0) / 3;
   const triangles = storedTriangles({ ...app.scene, meshes: [...app.scene.meshes, mesh] }, trianglesOf);

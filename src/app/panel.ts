@@ -7,6 +7,7 @@ import GUI, { type Controller } from 'lil-gui';
 import { TONEMAPS } from '../render/toneMaps';
 import { hexToLinear, linearToHex } from '../scene/color';
 import { MAX_BOUNCES } from '../scene/limits';
+import { defaultMaterial } from '../materials/registry';
 import type { Ground, Material } from '../scene/types';
 import type { App } from './App';
 import { addSphereMaterialControls } from './materialControls';
@@ -14,7 +15,7 @@ import { addMeshControls } from './meshControls';
 import { addEnvironmentControls } from './environmentControls';
 import type { EnvironmentMaps } from './environmentMaps';
 
-const DEFAULT_GROUND: Ground = { height: 0, material: { type: 'standard', color: [0.8, 0.8, 0.8], roughness: 1 } };
+const DEFAULT_GROUND: Ground = { height: 0, material: defaultMaterial() };
 
 export class Panel {
   readonly gui: GUI;
@@ -95,7 +96,7 @@ export class Panel {
     folder.open();
   }
 
-  /** The ground's material: standard only, no emission (the format forbids glass and emission on the ground). */
+  /** The ground's material: its color and roughness (every kind has them); no emission (the format forbids it there). */
   private materialControls(folder: GUI, material: () => Material): void {
     const app = this.app;
     this.tracked(folder.addColor({

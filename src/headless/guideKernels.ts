@@ -10,9 +10,11 @@ import { Program } from '../render/gl/program';
 import { FloatTarget } from '../render/gl/targets';
 import { BLOCK_VEC4S, HEADER } from '../render/layout/scene';
 import { featureDefines, sceneDefines } from '../render/shaderChunks';
+import { BASE_FEATURES } from '../render/packScene';
+import { ALL_MATERIAL_FEATURES } from '../materials/registry';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/shaderSources';
 import { createContext } from '../render/gl/context';
-import type { KernelRequest } from './kernels';
+import { kernelMaterial, type KernelRequest } from './kernels';
 
 /** guideSetup: pixel 0 = (local cone axis, 1 - cos half angle), others = guide probability. */
 export const GUIDE_KERNELS = ['guideSetup', 'sampleGuided', 'weightGuided', 'weightBsdf', 'pdfGuided', 'pdfCap'] as const;
@@ -28,7 +30,7 @@ function guideContext() {
   if (!context) {
     const gl = createContext(new OffscreenCanvas(1, 1), false);
     const kernels = Object.fromEntries(GUIDE_KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i]));
-    const defines = { ...sceneDefines(), ...featureDefines({ guides: 1, dielectric: true, environmentMap: false, meshes: false, emissiveMeshes: false, instances: false }), ...kernels };
+    const defines = { ...sceneDefines(), ...featureDefines({ ...BASE_FEATURES, guides: 1, materials: ALL_MATERIAL_FEATURES }), ...kernels };
     const program = new Program(gl, VERTEX_CHUNKS, [...SCENE_CHUNKS, { name: 'test/guide_kernels.frag', source: guideKernelFrag }], defines);
     gl.bindVertexArray(gl.createVertexArray());
     const block = gl.createBuffer();
@@ -49,11 +51,12 @@ export function runGuideKernel(request: KernelRequest & { kernel: GuideKernelNam
   gl.bindBuffer(gl.UNIFORM_BUFFER, block);
   gl.bufferSubData(gl.UNIFORM_BUFFER, HEADER.texels * 16, guide);
   const target = new FloatTarget(gl, request.width, request.height);
-  const params = [0, 0, 0, 0].map((v, i) => request.params[i] ?? v);
+  const params = [0, 0, 0, 0].map((v, i) => request.params?.[i] ?? v);
   program.use().setUniforms(
     {
       uKernel: GUIDE_KERNELS.indexOf(request.kernel),
       uParams: params,
+      uMaterial: kernelMaterial(request),
       uWo: request.wo ?? [0, 0, 1],
       uGrid: [request.width, request.height],
       uSeed: request.seed ?? 1,
@@ -61,7 +64,7 @@ export function runGuideKernel(request: KernelRequest & { kernel: GuideKernelNam
       uNormal: request.normal ?? [0, 0, 1],
       uCap: request.cap ?? [0, 0, 1, 0.1],
     },
-    { uKernel: 'int', uParams: 'vec4', uWo: 'vec3', uGrid: 'vec2', uSeed: 'uint', uPoint: 'vec3', uNormal: 'vec3', uCap: 'vec4' },
+    { uKernel: 'int', uParams: 'vec4', uMaterial: 'vec4', uWo: 'vec3', uGrid: 'vec2', uSeed: 'uint', uPoint: 'vec3', uNormal: 'vec3', uCap: 'vec4' },
   );
   gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
   gl.viewport(0, 0, request.width, request.height);

@@ -9,6 +9,9 @@ import { Program } from '../render/gl/program';
 import { FloatTarget } from '../render/gl/targets';
 import { BLOCK_VEC4S } from '../render/layout/scene';
 import { featureDefines, sceneDefines } from '../render/shaderChunks';
+import { BASE_FEATURES } from '../render/packScene';
+import { ALL_MATERIAL_FEATURES, MATERIAL_TEXELS, packMaterial } from '../materials/registry';
+import type { Material } from '../scene/types';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/shaderSources';
 import { createContext } from '../render/gl/context';
 import { GUIDE_KERNELS, isGuideKernel, runGuideKernel } from './guideKernels';
@@ -20,8 +23,10 @@ export interface KernelRequest {
   kernel: KernelName;
   width: number;
   height: number;
-  /** Kernel parameters: cone: [oneMinusCosMax]; material: [roughness, ior, type (0 standard, 1 dielectric)]. */
-  params: number[];
+  /** Kernel parameters: cone: [oneMinusCosMax]. */
+  params?: number[];
+  /** The material of the material and guide kernels (a normalized scene-format material). */
+  material?: Material;
   /** Outgoing direction (local frame) for the material kernels. */
   wo?: [number, number, number];
   seed?: number;
@@ -33,12 +38,17 @@ export interface KernelRequest {
   cap?: [number, number, number, number];
 }
 
+/** The request's material as its packed record (zeros without one). */
+export function kernelMaterial(request: KernelRequest): Float32Array {
+  return request.material ? packMaterial(request.material, false) : new Float32Array(MATERIAL_TEXELS * 4);
+}
+
 let context: { gl: WebGL2RenderingContext; program: Program } | null = null;
 
 function kernelContext() {
   if (!context) {
     const gl = createContext(new OffscreenCanvas(1, 1), false);
-    const defines = { ...sceneDefines(), ...featureDefines({ guides: 0, dielectric: true, environmentMap: false, meshes: false, emissiveMeshes: false, instances: false }), ...Object.fromEntries(KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i])) };
+    const defines = { ...sceneDefines(), ...featureDefines({ ...BASE_FEATURES, guides: 0, materials: ALL_MATERIAL_FEATURES }), ...Object.fromEntries(KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i])) };
     const program = new Program(gl, VERTEX_CHUNKS, [...SCENE_CHUNKS, { name: 'test/kernels.frag', source: kernelFrag }], defines);
     gl.bindVertexArray(gl.createVertexArray());
     // The scene chunks declare the SceneBlock uniform block; a draw with an
@@ -59,16 +69,17 @@ export function runKernel(request: KernelRequest): Float32Array {
   if (isGuideKernel(request.kernel)) return runGuideKernel({ ...request, kernel: request.kernel });
   const { gl, program } = kernelContext();
   const target = new FloatTarget(gl, request.width, request.height);
-  const params = [0, 0, 0, 0].map((v, i) => request.params[i] ?? v);
+  const params = [0, 0, 0, 0].map((v, i) => request.params?.[i] ?? v);
   program.use().setUniforms(
     {
       uKernel: KERNELS.indexOf(request.kernel),
       uParams: params,
+      uMaterial: kernelMaterial(request),
       uWo: request.wo ?? [0, 0, 1],
       uGrid: [request.width, request.height],
       uSeed: request.seed ?? 1,
     },
-    { uKernel: 'int', uParams: 'vec4', uWo: 'vec3', uGrid: 'vec2', uSeed: 'uint' },
+    { uKernel: 'int', uParams: 'vec4', uMaterial: 'vec4', uWo: 'vec3', uGrid: 'vec2', uSeed: 'uint' },
   );
   gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
   gl.viewport(0, 0, request.width, request.height);

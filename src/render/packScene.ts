@@ -6,12 +6,13 @@
  * sphere whose material emits is also an emitter. Light sampling picks an
  * emitter in proportion to its power through an alias table.
  */
+import { materialFeatures, packEmitterOnly, packMaterial } from '../materials/registry';
 import type { Material, Scene, Vec3 } from '../scene/types';
 import { buildAliasTable } from './aliasTable';
 import type { MeshGroups } from './bvh/groups';
 import { selectCausticGuides, type GuideSphere } from './causticGuides';
 import {
-  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MATERIAL_TYPES, MESH, SECTIONS, SPHERE,
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MESH, SECTIONS, SPHERE,
 } from './layout/scene';
 import { packRecord } from './layout/records';
 
@@ -19,7 +20,8 @@ import { packRecord } from './layout/records';
 export interface SceneFeatures {
   /** Caustic guides compiled in (0..MAX_GUIDES). */
   guides: number;
-  dielectric: boolean;
+  /** The material kinds whose code is compiled in, besides the default (src/materials/registry.ts). */
+  materials: readonly string[];
   environmentMap: boolean;
   /** Triangle meshes (the BVH traversal). */
   meshes: boolean;
@@ -28,6 +30,16 @@ export interface SceneFeatures {
   /** Files named by several meshes, stored once and instanced (src/render/bvh/groups.ts). */
   instances: boolean;
 }
+
+/** A scene with nothing optional: spheres of the default material under a constant sky. */
+export const BASE_FEATURES: SceneFeatures = {
+  guides: 0,
+  materials: [],
+  environmentMap: false,
+  meshes: false,
+  emissiveMeshes: false,
+  instances: false,
+};
 
 /** What packing needs to know of the scene's decoded files. */
 export interface PackOptions {
@@ -82,7 +94,7 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
   const emitterPdf = new Map(emitters.map((e, i) => [e.index, alias.pdf[i]]));
 
   spheres.forEach((sphere, i) => {
-    const material = addMaterial(sphere.material === 'emitterOnly' ? emitterOnlyRecord(sphere.radiance) : materialRecord(sphere.material));
+    const material = addMaterial(sphere.material === 'emitterOnly' ? packEmitterOnly(sphere.radiance) : packMaterial(sphere.material, false));
     const record = packRecord(SPHERE, { center: sphere.center, radius: sphere.radius, material, emitterPdf: emitterPdf.get(i) ?? 0 });
     data.set(record, (SECTIONS.spheres + i * SPHERE.texels) * 4);
   });
@@ -112,8 +124,8 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     const choice = packRecord(EMITTER_CHOICE, { aliasThreshold: alias.threshold[i], alias: alias.alias[i] });
     data.set(choice, (SECTIONS.emitterChoices + i * EMITTER_CHOICE.texels) * 4);
   });
-  const groundMaterial = scene.ground ? addMaterial(materialRecord(scene.ground.material)) : 0;
-  const meshMaterials = scene.meshes.map((mesh) => addMaterial(materialRecord(mesh.material)));
+  const groundMaterial = scene.ground ? addMaterial(packMaterial(scene.ground.material, false)) : 0;
+  const meshMaterials = scene.meshes.map((mesh) => addMaterial(packMaterial(mesh.material, true)));
   materials.forEach((record, i) => data.set(record, (SECTIONS.materials + i * MATERIAL.texels) * 4));
 
   const guides = selectCausticGuides(spheres);
@@ -136,13 +148,11 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     block.set([...spheres[mirror].center, spheres[mirror].radius], base + GUIDE_FIELDS.MIRROR * 4);
     block.set([...spheres[light].center, spheres[light].radius], base + GUIDE_FIELDS.LIGHT * 4);
   });
-  const dielectric =
-    spheres.some((s) => s.material !== 'emitterOnly' && s.material.type === 'dielectric') ||
-    scene.meshes.some((m) => m.material.type === 'dielectric');
+  const kinds = materialFeatures([...scene.spheres, ...scene.meshes, ...(scene.ground ? [scene.ground] : [])].map((o) => o.material));
   const environmentMap = environment !== null && 'map' in environment;
   const features = {
     guides: guides.length,
-    dielectric,
+    materials: kinds,
     environmentMap,
     meshes: scene.meshes.length > 0,
     emissiveMeshes: meshEmitters.length > 0,
@@ -157,21 +167,6 @@ function sceneSpheres(scene: Scene): SceneSphere[] {
     ...scene.spheres.map((s) => ({ center: s.center, radius: s.radius, material: s.material, radiance: emittedRadiance(s.material) })),
     ...scene.lights.map((l) => ({ center: l.position, radius: l.radius, material: 'emitterOnly' as const, radiance: scale(l.color, l.intensity) })),
   ];
-}
-
-function materialRecord(m: Material): Float32Array {
-  return packRecord(MATERIAL, {
-    color: m.color,
-    roughness: m.roughness,
-    emission: emittedRadiance(m),
-    type: MATERIAL_TYPES[m.type],
-    ior: m.type === 'dielectric' ? m.ior : 1,
-  });
-}
-
-/** A `lights` entry: emits, reflects nothing. */
-function emitterOnlyRecord(radiance: Vec3): Float32Array {
-  return packRecord(MATERIAL, { color: [0, 0, 0], roughness: 1, emission: radiance, type: MATERIAL_TYPES.emitterOnly, ior: 1 });
 }
 
 function emittedRadiance(m: Material): Vec3 {

@@ -1,7 +1,8 @@
 /**
  * Which GLSL chunks make up each program, in dependency order, and the
  * defines they are compiled with. Names are paths under src/shaders/;
- * `generated/` chunks are made here from the packed layout. No shader text
+ * `generated/` chunks are made here from the packed layout and the material
+ * registry; the material kinds' chunks are named relative to src/shaders/. No shader text
  * is imported here, so Node tools (bench/shader-ab.ts) can assemble the same
  * programs from files; the page gets the text through shaderSources.ts.
  */
@@ -11,6 +12,7 @@ import { sceneLayoutDefines, sceneLayoutGlsl } from './layout/scene';
 import type { SceneFeatures } from './packScene';
 import { samplingDefines, type SamplerKind } from './sampling';
 import { bvhDefines } from './bvhTextures';
+import { bsdfDispatchGlsl, MATERIAL_CHUNK_NAMES, materialDefines, materialFeatureDefines, materialGlsl } from '../materials/registry';
 
 /** The chunks every kernel that touches the scene needs. */
 export const SCENE_CHUNK_NAMES = [
@@ -19,13 +21,15 @@ export const SCENE_CHUNK_NAMES = [
   'common/sampling.glsl',
   'scene/layout.glsl',
   'generated/records.glsl',
+  'generated/materials.glsl',
   'scene/access.glsl',
   'scene/bvh.glsl',
   'scene/instances.glsl',
   'scene/intersect.glsl',
+  'surface.glsl',
   'bsdf/ggx.glsl',
-  'bsdf/standard.glsl',
-  'bsdf/dielectric.glsl',
+  ...MATERIAL_CHUNK_NAMES,
+  'generated/bsdf_dispatch.glsl',
   'bsdf/bsdf.glsl',
   'lights/sphere_emitter.glsl',
   'lights/environment_map.glsl',
@@ -37,6 +41,8 @@ export const TRACE_CHUNK_NAMES = [...SCENE_CHUNK_NAMES, 'camera.glsl', 'integrat
 
 const GENERATED: Record<string, () => string> = {
   'generated/records.glsl': sceneLayoutGlsl,
+  'generated/materials.glsl': materialGlsl,
+  'generated/bsdf_dispatch.glsl': bsdfDispatchGlsl,
 };
 
 /** The named chunks, generated ones made here and the rest read through `source`. */
@@ -48,6 +54,7 @@ export function assembleChunks(names: readonly string[], source: (name: string) 
 export function sceneDefines(sampler: SamplerKind = 'kronecker', russianRoulette = false): Record<string, string | number> {
   return {
     ...sceneLayoutDefines(),
+    ...materialDefines(),
     ...samplingDefines(sampler, russianRoulette),
     GUIDE_PROBABILITY: GUIDE_PROBABILITY.toFixed(6),
     GUIDE_MARGIN: GUIDE_MARGIN.toFixed(6),
@@ -60,7 +67,7 @@ export function sceneDefines(sampler: SamplerKind = 'kronecker', russianRoulette
 export function featureDefines(features: SceneFeatures): Record<string, number> {
   return {
     CAUSTIC_GUIDES: features.guides,
-    HAS_DIELECTRIC: features.dielectric ? 1 : 0,
+    ...materialFeatureDefines(features.materials),
     HAS_ENV_MAP: features.environmentMap ? 1 : 0,
     HAS_MESHES: features.meshes ? 1 : 0,
     HAS_EMISSIVE_MESHES: features.emissiveMeshes ? 1 : 0,

@@ -10,6 +10,3 @@ export const MAX_IMAGE_SIZE = 8192;
 export const MAX_SCENE_BYTES = 1_000_000;
 /** Meshes in one scene (each has its own material record). */
 export const MAX_MESHES = 64;
-/** Range of a dielectric's index of refraction. */
-export const MIN_IOR = 1.01;
-export const MAX_IOR = 4;

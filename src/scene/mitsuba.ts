@@ -14,23 +14,17 @@
  *   inside the pixel, the format's pixel definition).
  * - integrator: `path`, max_depth = maxBounces + 1, rr_depth > max_depth so
  *   Russian roulette never runs (the references were rendered that way).
- * - standard material: `blendbsdf` with weight = roughness, first child the
- *   specular lobe, second `diffuse`: Mitsuba evaluates (1 - w) * first + w *
- *   second, which is the format's (1 - r) * Specular + r * Lambert. Specular
- *   is `conductor` (r = 0) or `roughconductor` with GGX, alpha = r^2, and
- *   material="none" (reflectance 1 at all angles = no Fresnel) tinted by
- *   specular_reflectance. Pure r = 0 and r = 1 skip the blend. One-sided, as
- *   the format says for spheres and the ground (Mitsuba's default).
- * - dielectric: `dielectric` (r = 0) or `roughdielectric` (GGX, alpha = r^2,
- *   visible normals), int_ior = ior, ext_ior = 1, specular_transmittance =
- *   color.
+ * - materials: each plugin's own `mitsuba` entry (src/materials/<kind>/kind.ts,
+ *   through the registry), one-sided as the format says for spheres and the
+ *   ground (Mitsuba's default); on meshes wrapped in `twosided` unless the
+ *   material is a solid's boundary.
  * - emission: an `area` emitter on the shape.
  * - environment map: `envmap` with scale = intensity, rotated about +y; the
  *   file name as `environmentMapPath` gives it (default: as in the scene).
  * - meshes: a `ply` shape per mesh whose file `meshPath(i)` names: the
  *   caller writes it with `meshPlyFile` (world-space triangles, vertex
  *   normals when smooth; `face_normals` when flat, since Mitsuba would
- *   otherwise smooth them). Standard materials on meshes are `twosided`.
+ *   otherwise smooth them).
  * - lights: `sphere` with an `area` emitter (one-sided, emitting along the
  *   outward normal: the format's "all outward directions") and a black
  *   `diffuse` BSDF (lights reflect nothing).
@@ -47,7 +41,11 @@
 import { cameraFrame } from './camera';
 import { encodePly } from './mesh/plyEncode';
 import { transformMesh } from './mesh/transform';
-import type { Camera, DielectricMaterial, Material, Mesh, Scene, StandardMaterial, TriangleMesh, Vec3 } from './types';
+import { materialBsdf, meshBsdf } from '../materials/registry';
+import { el, float, integer, num, point, rgb, serializeXml, str, triple, type XmlNode } from './mitsubaXml';
+import type { Camera, Material, Mesh, Scene, TriangleMesh, Vec3 } from './types';
+
+export { escapeXml } from './mitsubaXml';
 
 export interface MitsubaExportOptions {
   /** Samples per pixel written into the sampler (default 256). */
@@ -77,31 +75,6 @@ export const MITSUBA_DEFAULT_SPP = 256;
 const NEAR_CLIP = 1e-4;
 const MITSUBA_DEFAULT_FAR_CLIP = 1e4;
 
-/** Escape a string for use inside an XML attribute value or text. */
-export function escapeXml(value: string): string {
-  return value
-    .replace(/&/g, '&amp;')
-    .replace(/</g, '&lt;')
-    .replace(/>/g, '&gt;')
-    .replace(/"/g, '&quot;')
-    .replace(/'/g, '&apos;');
-}
-
-/** Shortest round-trip decimal form; non-finite numbers are a caller bug. */
-function num(x: number): string {
-  if (!Number.isFinite(x)) throw new Error(`toMitsubaXml: non-finite number ${x}`);
-  return String(x);
-}
-
-function int(x: number, name: string): string {
-  if (!Number.isInteger(x) || x < 0) throw new Error(`toMitsubaXml: ${name} must be a non-negative integer, got ${x}`);
-  return String(x);
-}
-
-function triple(v: readonly number[]): string {
-  return `${num(v[0])}, ${num(v[1])}, ${num(v[2])}`;
-}
-
 function scale3(v: Vec3, s: number): Vec3 {
   return [v[0] * s, v[1] * s, v[2] * s];
 }
@@ -110,36 +83,7 @@ function isBlack(v: Vec3): boolean {
   return v[0] === 0 && v[1] === 0 && v[2] === 0;
 }
 
-/** A tiny XML element tree, serialized with two-space indentation. */
-interface Node {
-  tag: string;
-  attrs: [string, string][];
-  children: Node[];
-}
-
-function el(tag: string, attrs: Record<string, string>, children: Node[] = []): Node {
-  return { tag, attrs: Object.entries(attrs), children };
-}
-
-function serialize(node: Node, depth: number, out: string[]): void {
-  const pad = '  '.repeat(depth);
-  const attrs = node.attrs.map(([k, v]) => ` ${k}="${escapeXml(v)}"`).join('');
-  if (node.children.length === 0) {
-    out.push(`${pad}<${node.tag}${attrs}/>`);
-    return;
-  }
-  out.push(`${pad}<${node.tag}${attrs}>`);
-  for (const child of node.children) serialize(child, depth + 1, out);
-  out.push(`${pad}</${node.tag}>`);
-}
-
-const float = (name: string, value: number) => el('float', { name, value: num(value) });
-const integer = (name: string, value: number) => el('integer', { name, value: int(value, name) });
-const str = (name: string, value: string) => el('string', { name, value });
-const rgb = (name: string, value: Vec3) => el('rgb', { name, value: triple(value) });
-const point = (name: string, value: Vec3) => el('point', { name, value: triple(value) });
-
-function sensor(camera: Camera, width: number, height: number, spp: number, seed: number, farClip: number): Node {
+function sensor(camera: Camera, width: number, height: number, spp: number, seed: number, farClip: number): XmlNode {
   const frame = cameraFrame(camera);
   if (![...frame.forward, ...frame.up].every(Number.isFinite)) {
     throw new Error('toMitsubaXml: camera.position and camera.target must differ');
@@ -167,48 +111,14 @@ function sensor(camera: Camera, width: number, height: number, spp: number, seed
   ]);
 }
 
-/** The format's material as a Mitsuba BSDF. */
-function materialBsdf(material: Material): Node {
-  return material.type === 'dielectric' ? dielectricBsdf(material) : standardBsdf(material);
-}
-
-function dielectricBsdf(m: DielectricMaterial): Node {
-  const common = [float('int_ior', m.ior), float('ext_ior', 1), rgb('specular_transmittance', m.color)];
-  if (m.roughness === 0) return el('bsdf', { type: 'dielectric' }, common);
-  return el('bsdf', { type: 'roughdielectric' }, [
-    str('distribution', 'ggx'),
-    float('alpha', m.roughness * m.roughness),
-    el('boolean', { name: 'sample_visible', value: 'true' }),
-    ...common,
-  ]);
-}
-
-/** (1 - r) * GGX conductor + r * Lambert. */
-function standardBsdf(material: StandardMaterial): Node {
-  const r = material.roughness;
-  const diffuse = el('bsdf', { type: 'diffuse' }, [rgb('reflectance', material.color)]);
-  const specular =
-    r === 0
-      ? el('bsdf', { type: 'conductor' }, [str('material', 'none'), rgb('specular_reflectance', material.color)])
-      : el('bsdf', { type: 'roughconductor' }, [
-          str('material', 'none'),
-          str('distribution', 'ggx'),
-          float('alpha', r * r),
-          el('boolean', { name: 'sample_visible', value: 'true' }),
-          rgb('specular_reflectance', material.color),
-        ]);
-  // blendbsdf: weight 0 selects the first child, 1 the second.
-  return r === 0 ? specular : r === 1 ? diffuse : el('bsdf', { type: 'blendbsdf' }, [float('weight', r), specular, diffuse]);
-}
-
 /** The `area` emitter of an emissive material, if any. */
-function areaEmitter(material: Material): Node[] {
+function areaEmitter(material: Material): XmlNode[] {
   const e = material.emission;
   const radiance = e ? scale3(e.color, e.intensity) : ([0, 0, 0] as Vec3);
   return isBlack(radiance) ? [] : [el('emitter', { type: 'area' }, [rgb('radiance', radiance)])];
 }
 
-function environmentEmitter(scene: Scene, opts: MitsubaExportOptions): Node | null {
+function environmentEmitter(scene: Scene, opts: MitsubaExportOptions): XmlNode | null {
   const e = scene.environment;
   if (!e) return null;
   if ('map' in e) {
@@ -222,7 +132,7 @@ function environmentEmitter(scene: Scene, opts: MitsubaExportOptions): Node | nu
   return isBlack(radiance) ? null : el('emitter', { type: 'constant' }, [rgb('radiance', radiance)]);
 }
 
-function groundShape(scene: Scene): Node | null {
+function groundShape(scene: Scene): XmlNode | null {
   if (!scene.ground) return null;
   const [cx, , cz] = scene.camera.position;
   return el('shape', { type: 'rectangle' }, [
@@ -260,7 +170,7 @@ export function toMitsubaXml(scene: Scene, opts: MitsubaExportOptions = {}): str
   const seed = opts.seed ?? 0;
   const maxDepth = scene.render.maxBounces + 1;
 
-  const children: Node[] = [
+  const children: XmlNode[] = [
     el('integrator', { type: 'path' }, [integer('max_depth', maxDepth), integer('rr_depth', maxDepth + 1)]),
     sensor(scene.camera, width, height, spp, seed, farClip(scene)),
   ];
@@ -291,18 +201,18 @@ export function toMitsubaXml(scene: Scene, opts: MitsubaExportOptions = {}): str
   }
   scene.meshes.forEach((mesh, i) => {
     if (!opts.meshPath) throw new Error('toMitsubaXml: the scene has meshes; pass meshPath and write meshPlyFile for each');
-    const bsdf = materialBsdf(mesh.material);
+    const bsdf = meshBsdf(mesh.material);
     children.push(
       el('shape', { type: 'ply' }, [
         str('filename', opts.meshPath(i)),
         el('boolean', { name: 'face_normals', value: String(!(opts.meshSmooth?.(i) ?? true)) }),
-        mesh.material.type === 'standard' ? el('bsdf', { type: 'twosided' }, [bsdf]) : bsdf,
+        bsdf,
         ...areaEmitter(mesh.material),
       ]),
     );
   });
 
   const out = ['<?xml version="1.0" encoding="utf-8"?>', `<!-- Exported by pathtrace from scene format version ${scene.version}. -->`];
-  serialize(el('scene', { version: '3.0.0' }, children), 0, out);
+  serializeXml(el('scene', { version: '3.0.0' }, children), 0, out);
   return out.join('\n') + '\n';
 }

@@ -1,5 +1,5 @@
 /**
- * Scene format versions 1 and 2: validation and normalization of untrusted input.
+ * Scene format versions 1 to 3: validation and normalization of untrusted input.
  * docs/scene-format.md documents every rule enforced here; keep them in step.
  *
  * `parseScene` is the only way JSON becomes a `Scene`. It reports every
@@ -8,20 +8,19 @@
  * `SceneError`, whatever the input.
  */
 import * as z from 'zod';
-import { hexToLinear, isHexColor } from './color';
-import { MAX_BOUNCES, MAX_IMAGE_SIZE, MAX_LIGHTS, MAX_MESHES, MAX_SCENE_BYTES, MAX_SPHERES, MAX_IOR, MIN_IOR } from './limits';
-import type { Camera, Emission, Environment, Ground, Light, Material, Mesh, Scene, Sphere, Vec3 } from './types';
+import {
+  allowedOnGround, defaultMaterial, MATERIAL_KEYS, materialSchema, normalizeMaterial, SOLID_TYPES, UNKNOWN_TYPE_MESSAGE,
+} from '../materials/registry';
+import { MAX_BOUNCES, MAX_IMAGE_SIZE, MAX_LIGHTS, MAX_MESHES, MAX_SCENE_BYTES, MAX_SPHERES } from './limits';
+import {
+  color, coordinate, emissionShape, integer, intensity, length, MAX_COORDINATE, MAX_INTENSITY, point, shapeError, white,
+} from './schemaParts';
+import type { Camera, Environment, Ground, Light, Material, Mesh, Scene, Sphere, Vec3 } from './types';
 import { versionIssues } from './version';
 
-/** Largest magnitude of a coordinate, a radius, a ground height or an aperture. */
-export const MAX_COORDINATE = 1e6;
+export { MAX_COORDINATE, MAX_INTENSITY };
 /** Largest explicit `camera.focusDistance` (more than any distance inside the coordinate box). */
 export const MAX_FOCUS_DISTANCE = 1e7;
-/**
- * Largest light or environment intensity and emitted color channel: their
- * product stays far inside the range of the shader's 32-bit floats.
- */
-export const MAX_INTENSITY = 1e12;
 /** Shortest allowed `camera.up`, and closest allowed `camera.target` to `camera.position`. */
 export const MIN_CAMERA_LENGTH = 1e-6;
 /** At most this many issues are reported; one more issue at the root counts the rest. */
@@ -53,29 +52,6 @@ export type SafeParseResult = { ok: true; scene: Scene } | { ok: false; issues: 
 
 // ---------------------------------------------------------------- the schema
 
-/** The error of a schema's own type or shape check; a missing value stays "required". */
-const shapeError = (message: string) => (issue: { input?: unknown }) =>
-  issue.input === undefined ? undefined : message;
-
-const coordinate = () => z.number().min(-MAX_COORDINATE).max(MAX_COORDINATE);
-const length = () => z.number().gt(0).max(MAX_COORDINATE);
-const unit = () => z.number().min(0).max(1);
-const intensity = () => z.number().min(0).max(MAX_INTENSITY);
-const integer = (min: number, max: number) => z.number().min(min).max(max).int();
-
-const point = () =>
-  z.tuple([coordinate(), coordinate(), coordinate()], { error: shapeError('must be [x, y, z]') });
-
-/** [r, g, b] in linear RGB, or "#rrggbb" in sRGB (converted to linear before the channel checks). */
-const color = (channel: () => z.ZodNumber) =>
-  z.preprocess(
-    (value) => (isHexColor(value) ? hexToLinear(value) : value),
-    z.tuple([channel(), channel(), channel()], { error: shapeError('must be "#rrggbb" or [r, g, b]') }),
-  );
-
-const white = (): Vec3 => [1, 1, 1];
-const defaultMaterial = (): Material => ({ type: 'standard', color: [0.8, 0.8, 0.8], roughness: 1 });
-
 /** Array of at most `max` items; the length is checked before any item is looked at. */
 const list = <T extends z.ZodType>(item: T, max: number, noun: string) =>
   z
@@ -84,22 +60,6 @@ const list = <T extends z.ZodType>(item: T, max: number, noun: string) =>
     .pipe(z.array(item))
     .default(() => []);
 
-const emissionShape = { color: color(intensity).default(white), intensity: intensity().default(1) };
-const emission = z.strictObject(emissionShape).optional();
-const standardShape = {
-  type: z.literal('standard').default('standard'),
-  color: color(unit).default(() => defaultMaterial().color),
-  roughness: unit().default(1),
-  emission,
-};
-const dielectricShape = {
-  type: z.literal('dielectric'),
-  color: color(unit).default(white),
-  roughness: unit().default(0),
-  ior: z.number().min(MIN_IOR).max(MAX_IOR).default(1.5),
-  emission,
-};
-const MATERIAL_TYPES = ['standard', 'dielectric'] as const;
 /**
  * One of several object schemas, chosen by looking at the value (a material
  * by its `type`, an environment by its `map` key), so that errors name the
@@ -118,14 +78,9 @@ function oneOf<T>(choose: (value: Record<string, unknown>) => z.ZodType<T> | str
     return z.NEVER;
   });
 }
-/** A material by its `type` (absent = "standard"). */
-const material = oneOf<Material>((value) => {
-  if (value.type === undefined || value.type === 'standard') return z.strictObject(standardShape) as z.ZodType<Material>;
-  if (value.type === 'dielectric') return z.strictObject(dielectricShape) as z.ZodType<Material>;
-  return `must be ${MATERIAL_TYPES.map((t) => `"${t}"`).join(' or ')}`;
-}).default(defaultMaterial);
-/** Material keys by type, for typo suggestions. */
-const materialKeys = [...new Set([...Object.keys(standardShape), ...Object.keys(dielectricShape)])];
+/** A material by its `type` (absent = the default kind), through the kinds' registry. */
+const material = oneOf<Material>((value) => (materialSchema(value.type) as z.ZodType<Material> | undefined) ?? UNKNOWN_TYPE_MESSAGE).default(defaultMaterial);
+const materialKeys = MATERIAL_KEYS;
 
 function isRecord(value: unknown): value is Record<string, unknown> {
   return typeof value === 'object' && value !== null && !Array.isArray(value);
@@ -178,10 +133,10 @@ const mapEnvironmentShape = {
 const environment = oneOf<Environment>(
   (value) => ('map' in value ? z.strictObject(mapEnvironmentShape) : z.strictObject(environmentShape)) as z.ZodType<Environment>,
 );
-/** The ground is a plane: it has no inside (no glass) and emits nothing. */
-const groundMaterial = material.refine((m) => m.type === 'standard', {
+/** The ground is a plane: it has no inside (no solid's boundary, such as glass) and emits nothing. */
+const groundMaterial = material.refine(allowedOnGround, {
   path: ['type'],
-  message: 'must be "standard" on the ground (a plane has no inside)',
+  message: `must not be ${SOLID_TYPES.map((t) => `"${t}"`).join(' or ')} on the ground (a plane has no inside)`,
 }).refine((m) => m.emission === undefined, { path: ['emission'], message: 'is not allowed on the ground' });
 const groundShape = { height: coordinate().default(0), material: groundMaterial };
 const lightShape = {
@@ -209,7 +164,7 @@ const meshShape = {
 };
 
 const sceneShape = {
-  version: z.union([z.literal(1), z.literal(2)], { error: shapeError('must be 1 or 2') }).default(1),
+  version: z.union([z.literal(1), z.literal(2), z.literal(3)], { error: shapeError('must be 1, 2 or 3') }).default(1),
   camera,
   image: z.strictObject(imageShape).default(() => ({ width: 640, height: 480 })),
   render: z.strictObject(renderShape).default(() => ({ maxBounces: 6 })),
@@ -496,13 +451,7 @@ const copyEnvironment = (e: Environment): Environment =>
     ? { map: e.map, intensity: num(e.intensity), rotation: num(e.rotation) }
     : { color: vec(e.color), intensity: num(e.intensity) };
 const copyGround = (g: Ground): Ground => ({ height: num(g.height), material: copyMaterial(g.material) });
-function copyMaterial(m: Material): Material {
-  const base = { color: vec(m.color), roughness: num(m.roughness) };
-  const copy: Material = m.type === 'dielectric' ? { type: 'dielectric', ...base, ior: m.ior } : { type: 'standard', ...base };
-  if (m.emission) copy.emission = copyEmission(m.emission);
-  return copy;
-}
-const copyEmission = (e: Emission): Emission => ({ color: vec(e.color), intensity: num(e.intensity) });
+const copyMaterial = (m: Material): Material => normalizeMaterial(m as unknown as Record<string, unknown>);
 const copyMesh = (m: z.output<z.ZodObject<typeof meshShape>>): Mesh => ({
   file: m.file,
   material: copyMaterial(m.material),

@@ -2,9 +2,11 @@
  * Scene -> scene-format JSON. The inverse of `parseScene`: every value is
  * written out explicitly (defaults included), colors as linear [r, g, b], so
  * `parseScene(serializeScene(s))` deep-equals `s` for every valid `s`. A
- * scene that uses nothing of version 2 is written as a version-1 document
- * (no material `type`, no `meshes`), so it reads the same in older readers.
+ * scene that uses nothing of a later version is written as a document of
+ * the earliest version that holds it (version 1: no material `type`, no
+ * `meshes`), so it reads the same in older readers.
  */
+import { materialJson } from '../materials/registry';
 import type { SceneJson } from './schema';
 import type { Camera, Environment, Material, Mesh, Scene, Vec3 } from './types';
 import { requiredVersion } from './version';
@@ -14,7 +16,7 @@ export type { SceneJson };
 /** A fresh JSON-ready object (no references shared with `scene`), keys in the documented order. */
 export function serializeScene(scene: Scene): SceneJson {
   const { environment, ground } = scene;
-  const version = Math.max(scene.version, requiredVersion(scene)) as 1 | 2;
+  const version = Math.max(scene.version, requiredVersion(scene)) as 1 | 2 | 3;
   const material = (m: Material) => materialJson(m, version);
   return {
     version,
@@ -34,7 +36,7 @@ export function serializeScene(scene: Scene): SceneJson {
       radius: sphere.radius,
       material: material(sphere.material),
     })),
-    ...(version === 2 ? { meshes: scene.meshes.map((mesh) => meshJson(mesh)) } : {}),
+    ...(version >= 2 ? { meshes: scene.meshes.map((mesh) => meshJson(mesh)) } : {}),
   };
 }
 
@@ -62,14 +64,6 @@ function cameraJson(camera: Camera): SceneJson['camera'] {
 
 function environmentJson(e: Environment): NonNullable<SceneJson['environment']> {
   return 'map' in e ? { map: e.map, intensity: e.intensity, rotation: e.rotation } : { color: vec(e.color), intensity: e.intensity };
-}
-
-/** Version 1 has no `type` key: the standard material is the only one. */
-function materialJson(m: Material, version: 1 | 2) {
-  const base = { color: vec(m.color), roughness: m.roughness };
-  const emission = m.emission ? { emission: { color: vec(m.emission.color), intensity: m.emission.intensity } } : {};
-  if (m.type === 'dielectric') return { type: m.type, ...base, ior: m.ior, ...emission };
-  return version === 1 ? base : { type: m.type, ...base, ...emission };
 }
 
 function meshJson(mesh: Mesh) {

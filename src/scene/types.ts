@@ -1,5 +1,5 @@
 /**
- * The validated, normalized scene model (scene format versions 1 and 2).
+ * The validated, normalized scene model (scene format versions 1 to 3).
  * Every color here is linear RGB; every default of the format is filled in.
  * `parseScene` (schema.ts) is the only way untrusted JSON becomes a `Scene`.
  */
@@ -11,31 +11,9 @@ export interface Emission {
   intensity: number;
 }
 
-/** The version-1 material: a blend of a Fresnel-less GGX conductor and Lambert. */
-export interface StandardMaterial {
-  type: 'standard';
-  /** Linear albedo, each channel in [0, 1]. */
-  color: Vec3;
-  /** 0 = ideal mirror, 1 = Lambertian; the BSDF blends GGX (alpha = r^2) and Lambert. */
-  roughness: number;
-  /** Absent: the surface emits nothing. */
-  emission?: Emission;
-}
-
-/** Glass-like boundary of a solid (Mitsuba's dielectric / roughdielectric), version 2. */
-export interface DielectricMaterial {
-  type: 'dielectric';
-  /** Tint of refracted light, per crossing; reflection is not tinted. */
-  color: Vec3;
-  /** 0 = smooth; above, GGX with alpha = r^2. */
-  roughness: number;
-  /** Index of refraction inside, in [1.01, 4]; outside is 1. */
-  ior: number;
-  emission?: Emission;
-}
-
-export type Material = StandardMaterial | DielectricMaterial;
-export type MaterialType = Material['type'];
+/** A material of any kind (src/materials/: one folder per kind, listed by the registry). */
+export type { Material, MaterialType } from '../materials/registry';
+import type { Material } from '../materials/registry';
 
 export interface Camera {
   position: Vec3;
@@ -106,8 +84,8 @@ export interface Mesh {
 }
 
 export interface Scene {
-  /** 2 when the document uses any version-2 key (see `requiredVersion`). */
-  version: 1 | 2;
+  /** The document's version: at least what its keys need (see `requiredVersion`). */
+  version: 1 | 2 | 3;
   camera: Camera;
   image: ImageSize;
   render: RenderSettings;

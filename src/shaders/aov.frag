@@ -32,31 +32,15 @@ struct Aov {
   vec3 normal;
 };
 
-// Whether the chain goes on through this surface (a Dirac delta BSDF).
-bool isSpecular(Material m) {
-  bool specular = m.type == MATERIAL_STANDARD && standardIsDelta(m);
-#if HAS_DIELECTRIC
-  specular = specular || (m.type == MATERIAL_DIELECTRIC && dielectricIsDelta(m));
-#endif
-  return specular;
-}
-
-// The direction leaving a specular surface (wo, wi in the shading frame)
-// and its tint: a mirror reflects, tinted by its color; glass reflects
-// (untinted) with the Fresnel probability and otherwise refracts, tinted by
-// its color (the radiance-mode 1/eta^2 is a change of solid angle, not an
-// albedo, so it is left out). A one-sided mirror seen from below: none.
-vec3 specularDirection(Material m, vec3 wo, float u, out vec3 tint) {
-  tint = m.color;
-  vec3 wi = wo.z > 0.0 ? vec3(-wo.xy, wo.z) : vec3(0.0);
-#if HAS_DIELECTRIC
-  if (m.type == MATERIAL_DIELECTRIC) {
-    bool isDelta;
-    vec3 deltaWeight;
-    wi = dielectricSampleDirection(m, wo, vec3(0.0, 0.0, u), vec2(1.0, 0.0), isDelta, deltaWeight);
-    tint = wi.z * wo.z > 0.0 ? vec3(1.0) : m.color;
-  }
-#endif
+// The direction leaving a specular surface (wo, wi in the shading frame,
+// the event picked with u as light transport picks it) and its tint
+// (bsdfDeltaTint: each kind says what a delta event's albedo is). None
+// (the zero vector) where the surface is black from this side.
+vec3 specularDirection(Bsdf b, vec3 wo, float u, out vec3 tint) {
+  bool isDelta;
+  vec3 deltaWeight;
+  vec3 wi = bsdfSampleDirection(b, wo, vec3(0.0, 0.0, u), vec2(1.0, 0.0), isDelta, deltaWeight);
+  tint = bsdfDeltaTint(b, wo, wi);
   return wi;
 }
 
@@ -67,14 +51,15 @@ Aov firstNonSpecularHit(vec3 origin, vec3 direction) {
   vec3 tint = vec3(1.0);
   Hit hit;
   Material m;
+  Bsdf bsdf;
   vec3 normal;
   for (int depth = 0; ; depth++) {
     hit = intersectScene(origin, direction);
     m = loadMaterial(hit.material);
-    // Two-sided standard materials shade with the normal facing the ray (traceRadiance).
-    bool flip = hit.twoSided && m.type == MATERIAL_STANDARD && dot(direction, hit.normal) > 0.0;
-    normal = flip ? -hit.normal : hit.normal;
-    if (hit.kind == HIT_NONE || !isSpecular(m)) break;
+    Surface surface = surfaceAt(hit);
+    bsdf = evalMaterial(m, surface);
+    normal = facingNormal(surface, bsdf, direction);
+    if (hit.kind == HIT_NONE || !bsdfScatters(m) || !bsdfIsDelta(bsdf)) break;
     if (depth + 1 >= AOV_MAX_CHAIN) {
       tint = vec3(0.0);
       normal = vec3(0.0);
@@ -82,7 +67,7 @@ Aov firstNonSpecularHit(vec3 origin, vec3 direction) {
     }
     mat3 frame = basisAround(normal);
     vec3 surfaceTint;
-    vec3 wi = specularDirection(m, -direction * frame, rand4().x, surfaceTint);
+    vec3 wi = specularDirection(bsdf, -direction * frame, rand4().x, surfaceTint);
     if (wi == vec3(0.0)) {
       tint = vec3(0.0);  // black from this side; its normal stays
       break;
@@ -92,7 +77,7 @@ Aov firstNonSpecularHit(vec3 origin, vec3 direction) {
     origin = spawnRayOrigin(hit, direction);
   }
   bool escaped = hit.kind == HIT_NONE;
-  vec3 color = escaped ? escapedRadiance(direction) : m.type == MATERIAL_EMITTER_ONLY ? m.emission : m.color;
+  vec3 color = escaped ? escapedRadiance(direction) : !bsdfScatters(m) ? materialEmission(m) : bsdfAlbedo(bsdf);
   return Aov(tint * clamp(color, 0.0, 1.0), escaped ? vec3(0.0) : normal);
 }
 

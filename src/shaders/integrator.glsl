@@ -25,18 +25,18 @@ bool scatters(Hit hit, Material material) { return hit.kind != HIT_NONE && bsdfS
 // Dirac delta).
 vec3 emitted(Hit hit, Material material, vec3 direction, vec3 previousPosition, bool previousDelta, float previousPdf) {
   float weight = previousDelta ? 1.0 : powerHeuristic(previousPdf, lightPdf(previousPosition, direction, hit));
-  vec3 surface = dot(direction, hit.normal) < 0.0 ? material.emission : vec3(0.0);
+  vec3 surface = dot(direction, hit.normal) < 0.0 ? materialEmission(material) : vec3(0.0);
   return (hit.kind == HIT_NONE ? escapedRadiance(direction) : surface) * weight;
 }
 
 // Next-event estimation at a surface vertex: f * Le * |cos| / pdf of one
 // light sample, weighted by the power heuristic against BSDF sampling.
 // u: .xy the point on the emitter, .z the choice of emitter.
-vec3 sampleDirectLight(Hit hit, mat3 frame, vec3 wo, Material m, vec3 u) {
+vec3 sampleDirectLight(Hit hit, mat3 frame, vec3 wo, Bsdf bsdf, vec3 u) {
   LightSample light = sampleLight(hit.position, u);
   vec3 wi = light.direction * frame;  // transpose(frame) * direction: into the shading frame
   float bsdfPdf;
-  vec3 f = bsdfEval(m, wo, wi, bsdfPdf);
+  vec3 f = bsdfEval(bsdf, wo, wi, bsdfPdf);
   if (light.pdf <= 0.0 || bsdfPdf <= 0.0) return vec3(0.0);
   bsdfPdf = guidedPdf(bsdfPdf, light.direction);  // BSDF sampling is mixed with the caustic guides
   vec3 origin = spawnRayOrigin(hit, light.direction);
@@ -47,15 +47,16 @@ vec3 sampleDirectLight(Hit hit, mat3 frame, vec3 wo, Material m, vec3 u) {
 // The rest of a path whose camera ray hit `hit` (see scatters), given the
 // radiance it has seen so far. The shading frame's +z is the outside of
 // the surface: one-sided materials see wo.z < 0 from inside and scatter
-// nothing; glass scatters on both sides.
+// nothing; a solid's boundary (glass) scatters on both sides; two-sided
+// materials turn the frame towards the viewer (facingNormal).
 vec3 traceRadiance(vec3 direction, Hit hit, Material material, vec3 radiance) {
   vec3 throughput = vec3(1.0);
 
   for (int depth = 0; ; depth++) {
-    // Standard materials on meshes are two-sided (Mitsuba's twosided): seen
-    // from behind they shade as from the front.
-    bool flip = hit.twoSided && material.type == MATERIAL_STANDARD && dot(direction, hit.normal) > 0.0;
-    vec3 normal = flip ? -hit.normal : hit.normal;
+    // The material evaluated at the surface point, in its shading frame.
+    Surface surface = surfaceAt(hit);
+    Bsdf bsdf = evalMaterial(material, surface);
+    vec3 normal = facingNormal(surface, bsdf, direction);
     mat3 frame = basisAround(normal);
     vec3 wo = -direction * frame;
 
@@ -69,14 +70,14 @@ vec3 traceRadiance(vec3 direction, Hit hit, Material material, vec3 radiance) {
 #endif
 
     // Caustic guides at this vertex (see lights/caustic_guide.glsl).
-    buildGuides(hit.position, normal, material);
+    buildGuides(hit.position, normal, bsdf);
 
     // Light arriving directly from an emitter (next-event estimation).
-    vec3 direct = sampleDirectLight(hit, frame, wo, material, uLight.xyz);
-    radiance += throughput * (bsdfHasNonDeltaLobe(material) ? direct : vec3(0.0));
+    vec3 direct = sampleDirectLight(hit, frame, wo, bsdf, uLight.xyz);
+    radiance += throughput * (bsdfHasNonDeltaLobe(bsdf) ? direct : vec3(0.0));
 
     // Sample the BSDF (mixed with the caustic guides) for the next direction.
-    BsdfSample bs = sampleGuided(material, frame, wo, uBsdf, uLight.w);
+    BsdfSample bs = sampleGuided(bsdf, frame, wo, uBsdf, uLight.w);
     if (!bs.valid) break;
     throughput *= bs.weight;
 

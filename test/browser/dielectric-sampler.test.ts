@@ -1,3 +1,4 @@
+import type { Material } from '../../src/scene/types';
 /**
  * The rough dielectric's sampler (GGX visible normals, then reflection with
  * probability F, else refraction) against its pdf, in the browser on the
@@ -22,7 +23,10 @@ import { expectedCounts, sphereBin } from '../support/sphereHistogram';
 const SAMPLES_SIDE = 512; // 262,144 samples per case
 /** With 8 chi-square tests here (6 + 2 on caps), the false-failure rate stays below 1e-3. */
 const ALPHA = 1e-4;
-const DIELECTRIC = 1;
+const DIELECTRIC = 'dielectric';
+/** The kernels' material: untinted glass, or a white standard material. */
+const material = (type: string, roughness: number, ior: number) =>
+  (type === DIELECTRIC ? { type: 'dielectric', color: [1, 1, 1], roughness, ior } : { type: 'standard', color: [1, 1, 1], roughness }) as Material;
 
 interface Case { ior: number; roughness: number; theta: number }
 // theta > 90: wo below the surface, i.e. inside the solid.
@@ -42,7 +46,7 @@ describe('rough dielectric sampler agrees with its pdf', () => {
     it(`ior ${ior}, roughness ${roughness}, view ${theta} deg${theta > 90 ? ' (inside)' : ''}`, async () => {
       const t = (theta * Math.PI) / 180;
       const wo: [number, number, number] = [Math.sin(t), 0, Math.cos(t)];
-      const params = [roughness, ior, DIELECTRIC];
+      const params = { material: material(DIELECTRIC, roughness, ior) };
       const bins = { cosBins: 20, phiBins: 40 };
       // 32 x 32 pdf points per bin: the refraction pdf has sharp features
       // (its Jacobian's denominator nearly vanishes) that 12 x 12 midpoint
@@ -50,9 +54,9 @@ describe('rough dielectric sampler agrees with its pdf', () => {
       // far above the 0.04% binomial noise; at 32 the error is 0.1%.
       const sub = 32;
       const n = SAMPLES_SIDE * SAMPLES_SIDE;
-      const samples = await session().runKernel({ kernel: 'sampleMaterial', width: SAMPLES_SIDE, height: SAMPLES_SIDE, params, wo, seed: 9 });
+      const samples = await session().runKernel({ kernel: 'sampleMaterial', width: SAMPLES_SIDE, height: SAMPLES_SIDE, ...params, wo, seed: 9 });
       const grid = await session().runKernel({
-        kernel: 'pdfMaterial', width: bins.phiBins * sub, height: bins.cosBins * sub, params, wo,
+        kernel: 'pdfMaterial', width: bins.phiBins * sub, height: bins.cosBins * sub, ...params, wo,
       });
       const { expected, mass } = expectedCounts(grid, 3, bins, sub, n);
       const observed = new Float64Array(expected.length);
@@ -90,16 +94,16 @@ describe('BSDF sample weights', () => {
   const session = useRenderSession();
   const weightCases = [
     { type: DIELECTRIC, ior: 1.5, roughness: 1, theta: 130 },
-    { type: 0, ior: 1.5, roughness: 0.5, theta: 30 },
+    { type: 'standard', ior: 1.5, roughness: 0.5, theta: 30 },
   ];
   for (const { type, ior, roughness, theta } of weightCases) {
     it(`${type === DIELECTRIC ? 'dielectric' : 'standard'} ior ${ior}, roughness ${roughness}, view ${theta} deg: weight = f / pdf, mean = albedo`, async () => {
       const t = (theta * Math.PI) / 180;
       const wo: [number, number, number] = [Math.sin(t), 0, Math.cos(t)];
-      const params = [roughness, ior, type];
+      const params = { material: material(type, roughness, ior) };
       const n = SAMPLES_SIDE * SAMPLES_SIDE;
       // (weight, valid, bsdfEval / bsdfPdf at the sample, pdf) per sample.
-      const samples = await session().runKernel({ kernel: 'weightBsdf', width: SAMPLES_SIDE, height: SAMPLES_SIDE, params, wo, seed: 13 });
+      const samples = await session().runKernel({ kernel: 'weightBsdf', width: SAMPLES_SIDE, height: SAMPLES_SIDE, ...params, wo, seed: 13 });
       let sum = 0;
       let sumSq = 0;
       let worst = 0;
@@ -115,7 +119,7 @@ describe('BSDF sample weights', () => {
       // The albedo: f |cos| (channel 0 of the pdfGuided grid) integrated over the sphere.
       const bins = { cosBins: 20, phiBins: 40 };
       const sub = 32;
-      const grid = await session().runKernel({ kernel: 'pdfGuided', width: bins.phiBins * sub, height: bins.cosBins * sub, params, wo });
+      const grid = await session().runKernel({ kernel: 'pdfGuided', width: bins.phiBins * sub, height: bins.cosBins * sub, ...params, wo });
       const albedo = expectedCounts(grid, 0, bins, sub, 1).mass;
       const summary = JSON.stringify({ mean, albedo, sd, worst });
       console.log(`weights: ${summary}`);
@@ -190,7 +194,7 @@ describe('rough dielectric sampler at roughness 0.1 (narrow lobes, on caps)', ()
     it(`ior ${ior}, roughness 0.1, view ${theta} deg${theta > 90 ? ' (inside)' : ''}`, async () => {
       const t = (theta * Math.PI) / 180;
       const wo: V3 = [Math.sin(t), 0, Math.cos(t)];
-      const params = [0.1, ior, DIELECTRIC];
+      const params = { material: material(DIELECTRIC, 0.1, ior) };
       const n = SAMPLES_SIDE * SAMPLES_SIDE;
       const caps: { axis: V3; halfAngle: number }[] = [
         { axis: [-wo[0], -wo[1], wo[2]], halfAngle: reflectionCap },
@@ -199,11 +203,11 @@ describe('rough dielectric sampler at roughness 0.1 (narrow lobes, on caps)', ()
       const expectedParts: Float64Array[] = [];
       for (const cap of caps) {
         const grid = await session().runKernel({
-          kernel: 'pdfCap', width: SECTORS * CAP_SUB, height: RINGS * CAP_SUB, params, wo, cap: [...cap.axis, cap.halfAngle],
+          kernel: 'pdfCap', width: SECTORS * CAP_SUB, height: RINGS * CAP_SUB, ...params, wo, cap: [...cap.axis, cap.halfAngle],
         });
         expectedParts.push(capExpected(grid, cap.halfAngle, n));
       }
-      const samples = await session().runKernel({ kernel: 'sampleMaterial', width: SAMPLES_SIDE, height: SAMPLES_SIDE, params, wo, seed: 17 });
+      const samples = await session().runKernel({ kernel: 'sampleMaterial', width: SAMPLES_SIDE, height: SAMPLES_SIDE, ...params, wo, seed: 17 });
       const bins = RINGS * SECTORS;
       const observed = new Float64Array(2 * bins + 1);
       let valid = 0;

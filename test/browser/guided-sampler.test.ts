@@ -1,3 +1,4 @@
+import type { Material } from '../../src/scene/types';
 /**
  * The caustic-guide mixture (src/shaders/lights/caustic_guide.glsl) on its
  * own, in the browser: one guide (a mirror sphere and a light) written into
@@ -62,7 +63,7 @@ describe('caustic-guide mixture: sampleGuided agrees with guidedPdf', () => {
     it(`standard material, roughness ${roughness}, view ${theta} deg`, async () => {
       const t = (theta * Math.PI) / 180;
       const wo: Vec3 = [Math.sin(t), 0, Math.cos(t)];
-      const common = { params: [roughness, 1.5, 0], wo, point: POINT, normal: NORMAL, guide: GUIDE };
+      const common = { material: { type: 'standard', color: [1, 1, 1], roughness } as Material, wo, point: POINT, normal: NORMAL, guide: GUIDE };
       const setup = await session().runKernel({ ...common, kernel: 'guideSetup', width: 2, height: 1 });
       const axis: Vec3 = [setup[0], setup[1], setup[2]];
       const coneW = setup[3];

@@ -1,3 +1,4 @@
+import type { Material } from '../../src/scene/types';
 /**
  * The shader's samplers against their pdfs, in the browser (the GLSL code
  * itself, through src/headless/kernels.ts): a chi-square test of a 2D
@@ -62,10 +63,10 @@ describe('samplers agree with their pdfs', () => {
       const phiBins = 40;
       const sub = 16; // pdf evaluations per bin side for the expected counts
       const samples = await session().runKernel({
-        kernel: 'sampleMaterial', width: SAMPLES_SIDE, height: SAMPLES_SIDE, params: [roughness], wo, seed: 5,
+        kernel: 'sampleMaterial', width: SAMPLES_SIDE, height: SAMPLES_SIDE, material: { type: 'standard', color: [1, 1, 1], roughness } as Material, wo, seed: 5,
       });
       const pdfGrid = await session().runKernel({
-        kernel: 'pdfMaterial', width: phiBins * sub, height: cosBins * sub, params: [roughness], wo,
+        kernel: 'pdfMaterial', width: phiBins * sub, height: cosBins * sub, material: { type: 'standard', color: [1, 1, 1], roughness } as Material, wo,
       });
 
       // Expected counts: the pdf integrated over each bin (midpoint rule on

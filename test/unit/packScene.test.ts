@@ -3,15 +3,17 @@ import { buildAliasTable } from '../../src/render/aliasTable';
 import { selectCausticGuides } from '../../src/render/causticGuides';
 import { defineRecord, packRecord, recordGlsl } from '../../src/render/layout/records';
 import {
-  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, HEADER, MATERIAL, MATERIAL_TYPES, MAX_GUIDES, SECTIONS, SPHERE,
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, HEADER, MATERIAL, MAX_GUIDES, SECTIONS, SPHERE,
 } from '../../src/render/layout/scene';
+import { BASE_FEATURES } from '../../src/render/packScene';
+import { materialGlsl, unpackMaterial } from '../../src/materials/registry';
 import { packScene } from '../../src/render/packScene';
 import { parseScene } from '../../src/scene/schema';
 
 const camera = { position: [0, 1, 5], target: [0, 0, 0] };
 
 /** Reads record `index` of a table back into named fields, through the layout's own field table. */
-function readRecord(data: Float32Array, first: number, layout: typeof MATERIAL, index: number): Record<string, number | number[]> {
+function readRecord(data: Float32Array, first: number, layout: typeof SPHERE, index: number): Record<string, number | number[]> {
   const base = (first + index * layout.texels) * 4;
   const out: Record<string, number | number[]> = {};
   for (const f of layout.fields) {
@@ -19,6 +21,12 @@ function readRecord(data: Float32Array, first: number, layout: typeof MATERIAL, 
     out[f.name] = f.type === 'vec3' ? Array.from(data.subarray(at, at + 3)) : data[at];
   }
   return out;
+}
+
+/** Material record `index` of the table, read back through its kind's layout. */
+function readMaterial(data: Float32Array, index: number) {
+  const base = (SECTIONS.materials + index * MATERIAL.texels) * 4;
+  return unpackMaterial(data.subarray(base, base + MATERIAL.texels * 4));
 }
 
 describe('record layouts', () => {
@@ -32,12 +40,19 @@ describe('record layouts', () => {
   });
 
   it('generate GLSL readers that take each field from the texel and component the packer wrote', () => {
-    const glsl = recordGlsl(MATERIAL, 'fetch');
-    for (const f of MATERIAL.fields) {
+    const glsl = recordGlsl(SPHERE, 'fetch');
+    for (const f of SPHERE.fields) {
       const swizzle = 'xyzw'.slice(f.offset, f.offset + (f.type === 'vec3' ? 3 : 1));
       expect(glsl).toContain(`r.${f.name} = ${f.type === 'int' ? `int(t${f.texel}.${swizzle})` : `t${f.texel}.${swizzle}`};`);
     }
-    expect(glsl).toContain(`vec4 t${MATERIAL.texels - 1} = fetch(first + ${MATERIAL.texels - 1});`);
+    expect(glsl).toContain(`vec4 t${SPHERE.texels - 1} = fetch(first + ${SPHERE.texels - 1});`);
+  });
+
+  it('generate the material reader for every texel of the record', () => {
+    const glsl = materialGlsl();
+    for (let t = 0; t < MATERIAL.texels; t++) expect(glsl).toContain(`m.t${t} = sceneData(first + ${t});`);
+    expect(glsl).toMatch(/struct DielectricParams \{\n  vec3 color;\n  float roughness;\n  float ior;\n\};/);
+    expect(glsl).toContain('p.ior = b.t2.x;');
   });
 });
 
@@ -60,12 +75,12 @@ describe('packScene', () => {
     expect(packed.block.length).toBe(BLOCK_VEC4S * 4);
     const spheres = [0, 1, 2].map((i) => readRecord(packed.data, SECTIONS.spheres, SPHERE, i));
     expect(spheres.map((s) => [s.center, s.radius])).toEqual([[[0, 0, 0], 1], [[3, 0, 0], 2], [[1, 2, 3], 0.5]]);
-    const materials = spheres.map((s) => readRecord(packed.data, SECTIONS.materials, MATERIAL, s.material as number));
-    expect(materials[0]).toMatchObject({ type: MATERIAL_TYPES.standard, color: [0.25, 0.5, 0.75], roughness: 0.5, emission: [3, 3, 3] });
-    expect(materials[1].type).toBe(MATERIAL_TYPES.dielectric);
+    const materials = spheres.map((s) => readMaterial(packed.data, s.material as number));
+    expect(materials[0]).toMatchObject({ type: 'standard', twoSided: false, color: [0.25, 0.5, 0.75], roughness: 0.5, emission: [3, 3, 3] });
+    expect(materials[1].type).toBe('dielectric');
     expect(materials[1].ior).toBeCloseTo(1.33, 6);
     expect(materials[1].roughness).toBeCloseTo(0.1, 6);
-    expect(materials[2]).toMatchObject({ type: MATERIAL_TYPES.emitterOnly, emission: [4, 2, 1], color: [0, 0, 0] });
+    expect(materials[2]).toMatchObject({ type: 'emitterOnly', emission: [4, 2, 1] });
   });
 
   it('lists emitters by power with probabilities that match the spheres they point at', () => {
@@ -82,11 +97,11 @@ describe('packScene', () => {
       expect(sphere.emitterPdf).toBe(e.pdf);
     }
     expect(readRecord(packed.data, SECTIONS.spheres, SPHERE, 1).emitterPdf).toBe(0);
-    const ground = readRecord(packed.data, SECTIONS.materials, MATERIAL, header.groundMaterial as number);
-    expect(ground).toMatchObject({ type: MATERIAL_TYPES.standard, roughness: expect.closeTo(0.4, 6) });
+    const ground = readMaterial(packed.data, header.groundMaterial as number);
+    expect(ground).toMatchObject({ type: 'standard', roughness: expect.closeTo(0.4, 6) });
     const choice = readRecord(packed.data, SECTIONS.emitterChoices, EMITTER_CHOICE, 1);
     expect(choice.alias).toBe(0);
-    expect(packed.features).toEqual({ guides: 0, dielectric: true, environmentMap: false, meshes: false, emissiveMeshes: false, instances: false });
+    expect(packed.features).toEqual({ ...BASE_FEATURES, materials: ['dielectric'] });
   });
 
   it('makes an environment map an emitter picked by its power, and glass on meshes a glass feature', () => {
@@ -113,8 +128,9 @@ describe('packScene', () => {
     radius = Math.max(radius, Math.hypot(0 - c[0], 3 - c[1], 0 - c[2]) + 0.5);
     const sky = Math.PI * radius * radius * integral * 2;
     expect(environment.pdf).toBeCloseTo(sky / (sky + light), 6);
-    expect(packed.features).toEqual({ guides: 0, dielectric: true, environmentMap: true, meshes: true, emissiveMeshes: false, instances: false });
-    expect(readRecord(packed.data, SECTIONS.materials, MATERIAL, packed.meshMaterials[0]).type).toBe(MATERIAL_TYPES.dielectric);
+    expect(packed.features).toEqual({ ...BASE_FEATURES, materials: ['dielectric'], environmentMap: true, meshes: true });
+    // Glass on a mesh stays one-sided in the record: a solid's boundary has both sides already.
+    expect(readMaterial(packed.data, packed.meshMaterials[0])).toMatchObject({ type: 'dielectric', twoSided: false });
     // Without the map's distribution (or with a black map) the environment is no emitter.
     expect(readRecord(packScene(withMap).block, 0, HEADER, 0)).toMatchObject({ emitterCount: 1, environmentPdf: 0 });
   });
@@ -122,7 +138,24 @@ describe('packScene', () => {
   it('packs an empty scene with zero counts and a black environment', () => {
     const empty = packScene(parseScene({ camera }));
     expect(readRecord(empty.block, 0, HEADER, 0)).toMatchObject({ sphereCount: 0, emitterCount: 0, groundEnabled: 0, environment: [0, 0, 0] });
-    expect(empty.features).toEqual({ guides: 0, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false, instances: false });
+    expect(empty.features).toEqual(BASE_FEATURES);
+  });
+
+  it('makes opaque materials on meshes two-sided and compiles in only the kinds used', () => {
+    const metals = parseScene({
+      version: 3,
+      camera,
+      ground: { material: { type: 'conductor', metal: 'Au' } },
+      meshes: [{ file: 'a.obj', material: { roughness: 0.5 } }, { file: 'b.obj', material: { type: 'conductor', eta: [1, 2, 3], k: [4, 5, 6] } }],
+    });
+    const packed = packScene(metals);
+    expect(packed.features.materials).toEqual(['conductor']);
+    expect(readMaterial(packed.data, packed.meshMaterials[0])).toMatchObject({ type: 'standard', twoSided: true });
+    const metal = readMaterial(packed.data, packed.meshMaterials[1]);
+    expect(metal).toMatchObject({ type: 'conductor', twoSided: true, eta: [1, 2, 3], k: [4, 5, 6], color: [1, 1, 1], roughness: 0 });
+    const ground = readMaterial(packed.data, readRecord(packed.block, 0, HEADER, 0).groundMaterial as number);
+    expect(ground).toMatchObject({ type: 'conductor', twoSided: false });
+    expect((ground.eta as number[])[0]).toBeCloseTo(0.143036, 5);
   });
 });
 

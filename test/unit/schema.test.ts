@@ -241,8 +241,8 @@ const BAD_SCENES: [string, unknown, string, string][] = [
   ['missing camera', {}, 'camera', 'required'],
   ['camera not an object', { camera: 'front' }, 'camera', 'must be an object'],
   ['missing camera.target', { camera: { position: [0, 0, 1] } }, 'camera.target', 'required'],
-  ['version 3', edited((s) => (s.version = 3)), 'version', 'must be 1 or 2'],
-  ['version "1"', edited((s) => (s.version = '1')), 'version', 'must be 1 or 2'],
+  ['version 4', edited((s) => (s.version = 4)), 'version', 'must be 1, 2 or 3'],
+  ['version "1"', edited((s) => (s.version = '1')), 'version', 'must be 1, 2 or 3'],
   ['a point with two numbers', edited((s) => (s.camera.position = [0, 1])), 'camera.position', 'must be [x, y, z]'],
   ['a point with four numbers', edited((s) => (s.spheres[1].center = [0, 1, 2, 3])), 'spheres[1].center', 'must be [x, y, z]'],
   ['a point as a string', edited((s) => (s.lights[0].position = '0 1 2')), 'lights[0].position', 'must be [x, y, z]'],
@@ -298,8 +298,8 @@ const BAD_SCENES: [string, unknown, string, string][] = [
   ['emission in a version-1 document', edited((s) => (s.spheres[1].material.emission = {})), 'spheres[1].material.emission', 'requires "version": 2'],
   ['a map in a version-1 document', edited((s) => (s.environment = { map: 'sky.hdr' })), 'environment.map', 'requires "version": 2'],
   ['meshes in a version-1 document', edited((s) => (s.meshes = [])), 'meshes', 'requires "version": 2'],
-  ['an unknown material type', v2((s) => (s.spheres[0].material.type = 'glass')), 'spheres[0].material.type', 'must be "standard" or "dielectric"'],
-  ['a dielectric ground', v2((s) => (s.ground.material = { type: 'dielectric' })), 'ground.material.type', 'must be "standard" on the ground'],
+  ['an unknown material type', v2((s) => (s.spheres[0].material.type = 'glass')), 'spheres[0].material.type', 'must be "standard" or "dielectric" or "conductor"'],
+  ['a dielectric ground', v2((s) => (s.ground.material = { type: 'dielectric' })), 'ground.material.type', 'must not be "dielectric" on the ground'],
   ['an emissive ground', v2((s) => (s.ground.material.emission = { intensity: 2 })), 'ground.material.emission', 'is not allowed on the ground'],
   ['ior below 1.01', v2((s) => (s.spheres[0].material = { type: 'dielectric', ior: 1 })), 'spheres[0].material.ior', 'must be >= 1.01'],
   ['ior above 4', v2((s) => (s.spheres[0].material = { type: 'dielectric', ior: 4.5 })), 'spheres[0].material.ior', 'must be <= 4'],
@@ -330,7 +330,7 @@ describe('invalid scenes', () => {
 
   it('reports every error at once, each with its path', () => {
     const input = edited((s) => {
-      s.version = 3;
+      s.version = 4;
       s.camera.fov = 200;
       s.camera.target = [...s.camera.position];
       s.image.width = -5;
@@ -502,10 +502,10 @@ describe('docs/scene-format.md', () => {
   });
 
   it('shows error messages the parser really gives', () => {
-    const block = /```\n(version: must be 1 or 2[\s\S]*?)```/.exec(doc)?.[1];
+    const block = /```\n(version: must be 1, 2 or 3[\s\S]*?)```/.exec(doc)?.[1];
     expect(block).toBeDefined();
     const input = edited((s) => {
-      s.version = 3;
+      s.version = 4;
       s.camera.target = [...s.camera.position];
       s.image.width = 1.5;
       s.spheres[2].material.roughness = 3;

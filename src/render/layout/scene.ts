@@ -7,21 +7,18 @@
  * `sceneLayoutGlsl`).
  */
 import { MAX_LIGHTS, MAX_MESHES, MAX_SPHERES } from '../../scene/limits';
+import { MATERIAL_TEXELS } from '../../materials/registry';
 import { defineRecord, recordDefines, recordGlsl, type RecordLayout } from './records';
 
-/** Material type tags (Material.type in GLSL). */
-export const MATERIAL_TYPES = { standard: 0, dielectric: 1, emitterOnly: 2 } as const;
 /** Emitter kinds (Emitter.kind in GLSL). */
 export const EMITTER_KINDS = { sphere: 0, environment: 1, mesh: 2 } as const;
 
-/** A row of the material table: BSDF parameters and emission. */
-export const MATERIAL = defineRecord('Material', [
-  ['color', 'vec3'],
-  ['roughness', 'float'],
-  ['emission', 'vec3'],
-  ['type', 'int'],
-  ['ior', 'float'],
-]);
+/**
+ * A row of the material table: its layout is the material kind's
+ * (src/materials/registry.ts, which generates its GLSL); every row has the
+ * largest kind's texels.
+ */
+export const MATERIAL = { texels: MATERIAL_TEXELS } as const;
 
 /**
  * A sphere (also each `lights` entry, with an emitter-only material).
@@ -129,13 +126,11 @@ const tagDefines = (prefix: string, tags: Record<string, number>) =>
 
 export function sceneLayoutDefines(): Record<string, number> {
   return {
-    ...recordDefines(MATERIAL),
     ...recordDefines(SPHERE),
     ...recordDefines(EMITTER),
     ...recordDefines(EMITTER_CHOICE),
     ...recordDefines(MESH),
     ...recordDefines(INSTANCE),
-    ...tagDefines('MATERIAL', MATERIAL_TYPES),
     ...tagDefines('EMITTER', EMITTER_KINDS),
     MATERIALS_FIRST: SECTIONS.materials,
     SPHERES_FIRST: SECTIONS.spheres,
@@ -154,7 +149,7 @@ export function sceneLayoutDefines(): Record<string, number> {
 
 /** The generated GLSL: a struct and a loader per record (see records.ts). */
 export function sceneLayoutGlsl(): string {
-  const tables: RecordLayout[] = [MATERIAL, SPHERE, EMITTER, EMITTER_CHOICE, MESH];
+  const tables: RecordLayout[] = [SPHERE, EMITTER, EMITTER_CHOICE, MESH];
   return [
     '// Generated from src/render/layout/scene.ts: do not edit.',
     ...tables.map((layout) => recordGlsl(layout, 'sceneData')),

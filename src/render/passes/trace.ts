@@ -7,7 +7,7 @@ import { missingAssets, type SceneAssets } from '../../scene/assets';
 import { SceneError } from '../../scene/schema';
 import { BLOCK_VEC4S, DATA_TEXELS } from '../layout/scene';
 import { AssetTextures, environmentDistribution } from './assetTextures';
-import { packScene, type SceneFeatures } from '../packScene';
+import { BASE_FEATURES, packScene, type SceneFeatures } from '../packScene';
 import type { SamplerKind } from '../sampling';
 import { featureDefines, sceneDefines } from '../shaderChunks';
 import { TRACE_CHUNKS, VERTEX_CHUNKS } from '../shaderSources';
@@ -70,8 +70,8 @@ export class TracePass {
     russianRoulette = false,
   ) {
     this.defines = sceneDefines(sampler, russianRoulette);
-    this.program = this.programFor({ guides: 0, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false, instances: false });
-    this.programFor({ guides: 1, dielectric: false, environmentMap: false, meshes: false, emissiveMeshes: false, instances: false });
+    this.program = this.programFor(BASE_FEATURES);
+    this.programFor({ ...BASE_FEATURES, guides: 1 });
     this.assets = new AssetTextures(gl);
     this.sceneBuffer = gl.createBuffer()!;
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);

@@ -59,8 +59,8 @@ vec4 guideCone(vec3 x, vec3 n, int guide) {
   return sensible ? vec4(toP / dx, s2 / (1.0 + sqrt(1.0 - s2))) : vec4(n, 1.0);
 }
 
-void buildGuides(vec3 x, vec3 n, Material m) {
-  guideProbability = GUIDE_PROBABILITY * bsdfGuideWeight(m);
+void buildGuides(vec3 x, vec3 n, Bsdf b) {
+  guideProbability = GUIDE_PROBABILITY * bsdfGuideWeight(b);
   guideCone0 = guideCone(x, n, 0);
 #if CAUSTIC_GUIDES > 1
   guideCone1 = guideCone(x, n, 1);
@@ -90,7 +90,7 @@ float guidedPdf(float bsdfPdf, vec3 w) {
 // (both techniques share its angle, so one sin/cos pair serves), .z BSDF
 // lobe, .w technique; choice: which cone. Branch-free: both directions are
 // drawn and one is selected.
-BsdfSample sampleGuided(Material m, mat3 frame, vec3 wo, vec4 u, float choice) {
+BsdfSample sampleGuided(Bsdf m, mat3 frame, vec3 wo, vec4 u, float choice) {
   vec2 circle = unitCircle(u.y);
   bool isDelta;
   vec3 deltaWeight;
@@ -117,9 +117,9 @@ BsdfSample sampleGuided(Material m, mat3 frame, vec3 wo, vec4 u, float choice) {
 
 #else
 
-void buildGuides(vec3 x, vec3 n, Material m) {}
+void buildGuides(vec3 x, vec3 n, Bsdf b) {}
 float guidedPdf(float bsdfPdf, vec3 w) { return bsdfPdf; }
-BsdfSample sampleGuided(Material m, mat3 frame, vec3 wo, vec4 u, float choice) {
+BsdfSample sampleGuided(Bsdf m, mat3 frame, vec3 wo, vec4 u, float choice) {
   return bsdfSample(m, wo, u.xyz);
 }
 

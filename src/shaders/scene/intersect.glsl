@@ -17,7 +17,6 @@ struct Hit {
   vec3 position;
   vec3 normal;      // shading normal, on the outside of the surface: it decides the side
   vec3 geometricNormal;  // offsets spawned rays (equal to `normal` but on smooth meshes)
-  bool twoSided;    // a standard material on a mesh scatters alike on both sides
   float scale;      // size of the hit object, for the self-intersection offset
   vec4 geometry;    // the sphere hit: [center, radius]
   int material;     // index into the material table
@@ -92,7 +91,6 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   hit.material = isGround ? groundMaterial() : record.material;
   hit.emitterPdf = isGround ? 0.0 : record.emitterPdf;
   hit.geometricNormal = hit.normal;
-  hit.twoSided = false;
 #if HAS_MESHES
   MeshHit triangle;
   if (meshClosestHit(origin, direction, hit.t, triangle)) {
@@ -110,7 +108,6 @@ Hit intersectScene(vec3 origin, vec3 direction) {
 #else
     hit.emitterPdf = 0.0;
 #endif
-    hit.twoSided = true;  // for standard materials: see traceRadiance
   }
 #endif
   return hit;

@@ -1,10 +1,10 @@
 // Kernels of the caustic-guide mixture and of the BSDF sample weights, for
 // test/browser/guided-sampler.test.ts. Compiled with CAUSTIC_GUIDES = 1 and
-// HAS_DIELECTRIC = 1; the guide (mirror and light spheres) comes from the
+// every material kind; the guide (mirror and light spheres) comes from the
 // SceneBlock uniform block, as in the renderer, and buildGuides() makes the
 // cone for the vertex at uPoint with normal uNormal.
 uniform int uKernel;
-uniform vec4 uParams;   // roughness, ior, material type
+uniform vec4 uMaterial[MATERIAL_TEXELS];  // the packed record of the request's material
 uniform vec3 uWo;       // local frame
 uniform vec2 uGrid;
 uniform uint uSeed;
@@ -26,7 +26,7 @@ void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   uint index = uint(pixel.y) * uint(uGrid.x) + uint(pixel.x);
   rngBeginSample(uvec2(index, 0u), 0u, uSeed);
-  Material m = Material(vec3(1.0), uParams.x, vec3(0.0), int(uParams.z), uParams.y);
+  Bsdf m = bsdfFromRecord(materialOf(uMaterial));
   mat3 frame = basisAround(normalize(uNormal));
   buildGuides(uPoint, normalize(uNormal), m);
   if (uKernel == KERNEL_GUIDESETUP) {

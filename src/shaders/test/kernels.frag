@@ -1,6 +1,7 @@
 // One renderer function per pixel, for the sampler tests.
 uniform int uKernel;
 uniform vec4 uParams;
+uniform vec4 uMaterial[MATERIAL_TEXELS];  // the packed record of the request's material
 uniform vec3 uWo;
 uniform vec2 uGrid;
 uniform uint uSeed;
@@ -20,7 +21,7 @@ void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   uint index = uint(pixel.y) * uint(uGrid.x) + uint(pixel.x);
   rngBeginSample(uvec2(index, 0u), 0u, uSeed);
-  Material material = Material(vec3(1.0), uParams.x, vec3(0.0), int(uParams.z), uParams.y);
+  Bsdf material = bsdfFromRecord(materialOf(uMaterial));
   if (uKernel == KERNEL_SAMPLECONE) {
     outValue = vec4(sampleUniformCone(rand4().xy, uParams.x), uniformConePdf(uParams.x));
   } else if (uKernel == KERNEL_SAMPLEMATERIAL) {

@@ -9,18 +9,20 @@
 // does): its peak is then far narrower than a pixel's footprint, and the
 // mirror is exact instead of a badly conditioned huge-D/tiny-pdf pair.
 
-float standardAlpha(Material m) { return m.roughness * m.roughness; }
-bool standardIsDelta(Material m) { return standardAlpha(m) < DELTA_ALPHA; }
+float standardAlpha(StandardParams m) { return m.roughness * m.roughness; }
+// The specular lobe is an ideal mirror (and light sampling still sees the diffuse one).
+bool standardHasDeltaLobe(StandardParams m) { return standardAlpha(m) < DELTA_ALPHA; }
 
 // f(wo, wi) * cos(wi) of the non-delta lobes; `pdf` receives their mixture
 // density of sampling wi.
-vec3 standardEval(Material m, vec3 wo, vec3 wi, out float pdf) {
+vec3 standardEval(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
+  StandardParams m = standardParams(b);
   pdf = 0.0;
   if (wo.z <= 0.0 || wi.z <= 0.0) return vec3(0.0);
   float r = m.roughness;
   vec3 f = m.color * (r * INV_PI * wi.z);
   pdf = r * INV_PI * wi.z;
-  if (r < 1.0 && !standardIsDelta(m)) {
+  if (r < 1.0 && !standardHasDeltaLobe(m)) {
     float alpha = standardAlpha(m);
     vec3 h = normalize(wo + wi);
     float d = ggxD(h, alpha);
@@ -36,9 +38,10 @@ vec3 standardEval(Material m, vec3 wo, vec3 wi, out float pdf) {
 // radius and `circle` = unitCircle(u.y) the angle of a point on the disk).
 // For the ideal mirror, `isDelta` is set and `deltaWeight` = f cos / pdf
 // (the (1 - r) of the lobe cancels its choice).
-vec3 standardSampleDirection(Material m, vec3 wo, vec3 u, vec2 circle, out bool isDelta, out vec3 deltaWeight) {
+vec3 standardSampleDirection(Bsdf b, vec3 wo, vec3 u, vec2 circle, out bool isDelta, out vec3 deltaWeight) {
+  StandardParams m = standardParams(b);
   bool chooseSpecular = u.z >= m.roughness;
-  isDelta = chooseSpecular && standardIsDelta(m);
+  isDelta = chooseSpecular && standardHasDeltaLobe(m);
   deltaWeight = m.color;
   // One polar disk point serves both lobes (one sin/cos pair per bounce):
   // projected up it is cosine-distributed, warped it is a visible normal.
@@ -50,4 +53,14 @@ vec3 standardSampleDirection(Material m, vec3 wo, vec3 u, vec2 circle, out bool 
 }
 
 // Light sampling can contribute where some lobe is not a Dirac delta.
-bool standardHasNonDeltaLobe(Material m) { return m.roughness > 0.0; }
+bool standardHasNonDeltaLobe(Bsdf b) { return standardParams(b).roughness > 0.0; }
+// A mirror for the guide buffers: its specular lobe is a delta (the diffuse
+// weight r < sqrt(DELTA_ALPHA) that it may still have is neglected there).
+bool standardIsDelta(Bsdf b) { return standardHasDeltaLobe(standardParams(b)); }
+// The guide buffers: a mirror's tint, a surface's color.
+vec3 standardDeltaTint(Bsdf b, vec3 wo, vec3 wi) { return standardParams(b).color; }
+vec3 standardAlbedo(Bsdf b) { return standardParams(b).color; }
+// The caustic guides may take over the diffuse weight's share of "BSDF
+// sampling" (a glossy lobe already concentrates its samples; an ideal
+// mirror is not guided at all).
+float standardGuideWeight(Bsdf b) { return standardParams(b).roughness; }

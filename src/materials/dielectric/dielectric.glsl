@@ -26,8 +26,8 @@ float fresnelDielectric(float cosThetaI, float eta, out float cosThetaT, out flo
   return cosI == 0.0 ? 1.0 : r;
 }
 
-float dielectricAlpha(Material m) { return m.roughness * m.roughness; }
-bool dielectricIsDelta(Material m) { return dielectricAlpha(m) < DELTA_ALPHA; }
+float dielectricAlpha(DielectricParams m) { return m.roughness * m.roughness; }
+bool dielectricSmooth(DielectricParams m) { return dielectricAlpha(m) < DELTA_ALPHA; }
 
 // Smith G1 on either side of the surface.
 float ggxG1Either(vec3 v, float alpha) { return ggxG1(vec3(v.xy, abs(v.z)), alpha); }
@@ -35,9 +35,10 @@ float ggxG1Either(vec3 v, float alpha) { return ggxG1(vec3(v.xy, abs(v.z)), alph
 // f(wo, wi) |cos wi| of the rough dielectric (0 for the smooth one, all of
 // which is a delta); `pdf` receives the density of dielectricSampleDirection
 // drawing wi (as Mitsuba's roughdielectric evaluates them).
-vec3 dielectricEval(Material m, vec3 wo, vec3 wi, out float pdf) {
+vec3 dielectricEval(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
+  DielectricParams m = dielectricParams(b);
   pdf = 0.0;
-  if (dielectricIsDelta(m) || wo.z == 0.0 || wi.z == 0.0) return vec3(0.0);
+  if (dielectricSmooth(m) || wo.z == 0.0 || wi.z == 0.0) return vec3(0.0);
   float alpha = dielectricAlpha(m);
   bool isReflection = wo.z * wi.z > 0.0;
   float eta = wo.z > 0.0 ? m.ior : 1.0 / m.ior;
@@ -71,8 +72,9 @@ vec3 dielectricEval(Material m, vec3 wo, vec3 wi, out float pdf) {
 // refraction. For the smooth boundary `isDelta` is set and `deltaWeight` is
 // f cos / pdf: 1 for reflection, color / eta^2 (radiance mode) for
 // refraction. u: .x and `circle` the disk point, .z the lobe.
-vec3 dielectricSampleDirection(Material m, vec3 wo, vec3 u, vec2 circle, out bool isDelta, out vec3 deltaWeight) {
-  isDelta = dielectricIsDelta(m);
+vec3 dielectricSampleDirection(Bsdf b, vec3 wo, vec3 u, vec2 circle, out bool isDelta, out vec3 deltaWeight) {
+  DielectricParams m = dielectricParams(b);
+  isDelta = dielectricSmooth(m);
   float side = wo.z < 0.0 ? -1.0 : 1.0;
   vec3 woUp = side * wo;
   vec3 h = isDelta ? vec3(0.0, 0.0, 1.0) : sampleGgxVisibleNormal(woUp, dielectricAlpha(m), sqrt(u.x) * circle);
@@ -89,4 +91,10 @@ vec3 dielectricSampleDirection(Material m, vec3 wo, vec3 u, vec2 circle, out boo
   return isDelta || sideOk ? wi : vec3(0.0);
 }
 
-bool dielectricHasNonDeltaLobe(Material m) { return !dielectricIsDelta(m); }
+bool dielectricHasNonDeltaLobe(Bsdf b) { return !dielectricSmooth(dielectricParams(b)); }
+bool dielectricIsDelta(Bsdf b) { return dielectricSmooth(dielectricParams(b)); }
+// The guide buffers: reflection is untinted, refraction tinted by the color
+// (the radiance-mode 1/eta^2 is a change of solid angle, not an albedo).
+vec3 dielectricDeltaTint(Bsdf b, vec3 wo, vec3 wi) { return wi.z * wo.z > 0.0 ? vec3(1.0) : dielectricParams(b).color; }
+vec3 dielectricAlbedo(Bsdf b) { return dielectricParams(b).color; }
+float dielectricGuideWeight(Bsdf b) { return 0.0; }

@@ -1,0 +1,308 @@
+/**
+ * The material kinds, and everything derived from their descriptions
+ * (kind.ts): the Material union, the schema of a material by its `type`,
+ * the record layouts and tags, the program variants' switches, the
+ * generated GLSL (the Material record, each kind's parameter struct, the
+ * BSDF dispatch), serialization, the Mitsuba export and version rules.
+ *
+ * Adding a kind: a folder src/materials/<kind>/ with kind.ts (its
+ * MaterialKind), <kind>.glsl (the functions listed in kind.ts) and its
+ * tests, and one line in KINDS below. Nothing else names a kind.
+ */
+import * as z from 'zod';
+import { defineRecord, packRecord, type RecordLayout } from '../render/layout/records';
+import { el } from '../scene/mitsubaXml';
+import { emission } from '../scene/schemaParts';
+import type { Emission, Vec3 } from '../scene/types';
+import { conductor, type ConductorMaterial } from './conductor/kind';
+import { dielectric, type DielectricMaterial } from './dielectric/kind';
+import type { MaterialControl, MaterialKind } from './kind';
+import { standard, type StandardMaterial } from './standard/kind';
+
+export type { ConductorMaterial, DielectricMaterial, StandardMaterial };
+export type Material = StandardMaterial | DielectricMaterial | ConductorMaterial;
+export type MaterialType = Material['type'];
+
+/**
+ * Every kind; the first is the default (a material without `type`, the
+ * version-1 material) and is compiled into every program: the BSDF
+ * dispatch falls through to it.
+ */
+export const KINDS: readonly MaterialKind<Material>[] = [standard, dielectric, conductor] as unknown as MaterialKind<Material>[];
+const DEFAULT_KIND = KINDS[0];
+export const MATERIAL_TYPE_NAMES: readonly string[] = KINDS.map((k) => k.type);
+
+const BY_TYPE = new Map<string, MaterialKind<Material>>(KINDS.map((kind) => [kind.type, kind]));
+/** The description of a material's kind. */
+export const kindOf = (m: { type: string }): MaterialKind<Material> => BY_TYPE.get(m.type)!;
+
+/** The default material: the default kind's defaults (an empty material object). */
+export function defaultMaterial(): Material {
+  return normalizeMaterial(materialSchema(DEFAULT_KIND.type)!.parse({}) as Record<string, unknown>);
+}
+
+// ---------------------------------------------------------------- schema
+
+const schemas = new Map<string, z.ZodType<unknown>>(
+  KINDS.map((kind) => {
+    const type = kind === DEFAULT_KIND ? z.literal(kind.type).default(kind.type) : z.literal(kind.type);
+    const schema = z.strictObject({ type, ...kind.shape, emission }).superRefine((parsed, ctx) => {
+      for (const [key, message] of kind.check?.(parsed) ?? []) ctx.addIssue({ code: 'custom', path: [key], message });
+    });
+    return [kind.type, schema as z.ZodType<unknown>] as const;
+  }),
+);
+
+/** The schema of a material whose `type` is `type` (undefined: the default kind); undefined for an unknown type. */
+export function materialSchema(type: unknown): z.ZodType<unknown> | undefined {
+  return schemas.get(type === undefined ? DEFAULT_KIND.type : (type as string));
+}
+
+/** The message for a `type` no kind has. */
+export const UNKNOWN_TYPE_MESSAGE = `must be ${MATERIAL_TYPE_NAMES.map((t) => `"${t}"`).join(' or ')}`;
+
+/** Every key of any kind, for typo suggestions. */
+export const MATERIAL_KEYS: readonly string[] = [...new Set(['type', ...KINDS.flatMap((k) => Object.keys(k.shape)), 'emission'])];
+
+/** A fresh normalized material from what its schema parsed (-0 becomes 0, emission copied). */
+export function normalizeMaterial(parsed: Record<string, unknown>): Material {
+  const kind = kindOf(parsed as { type: string });
+  const material = clean(kind.normalize(parsed)) as Material;
+  const e = parsed.emission as Emission | undefined;
+  if (e) material.emission = { color: clean(e.color) as Vec3, intensity: clean(e.intensity) as number };
+  return material;
+}
+
+/** A deep copy of plain JSON-like data with -0 turned into 0. */
+function clean(value: unknown): unknown {
+  if (typeof value === 'number') return value === 0 ? 0 : value;
+  if (Array.isArray(value)) return value.map(clean);
+  if (value && typeof value === 'object') return Object.fromEntries(Object.entries(value).map(([k, v]) => [k, clean(v)]));
+  return value;
+}
+
+/** Whether the ground may have this material: not the boundary of a solid (a plane has no inside). */
+export const allowedOnGround = (m: Material) => !kindOf(m).solid;
+export const SOLID_TYPES: readonly string[] = KINDS.filter((k) => k.solid).map((k) => k.type);
+
+// ---------------------------------------------------------------- versions and JSON
+
+/** The scene-format version a material needs: its kind's, and 2 for emission. */
+export const materialVersion = (m: Material): 1 | 2 | 3 => Math.max(kindOf(m).version, m.emission ? 2 : 1) as 1 | 2 | 3;
+
+/** The version that brought the kind named `type` (undefined: the default kind; unknown types: none). */
+export function typeVersion(type: unknown): number | undefined {
+  return (type === undefined ? DEFAULT_KIND : BY_TYPE.get(type as string))?.version;
+}
+
+/** Scene JSON of a material, every value explicit; a version-1 document has no `type` key. */
+export function materialJson(m: Material, version: number): Record<string, unknown> {
+  const keys = kindOf(m).json(m);
+  const e = m.emission ? { emission: { color: [...m.emission.color], intensity: m.emission.intensity } } : {};
+  return version === 1 ? keys : { type: m.type, ...keys, ...e };
+}
+
+// ---------------------------------------------------------------- Mitsuba
+
+/** Mitsuba's BSDF of a material, one-sided (spheres and the ground). */
+export const materialBsdf = (m: Material) => kindOf(m).mitsuba(m);
+/** ... on a mesh: two-sided unless the boundary of a solid (the format's sidedness rule). */
+export const meshBsdf = (m: Material) => (kindOf(m).solid ? materialBsdf(m) : el('bsdf', { type: 'twosided' }, [materialBsdf(m)]));
+
+// ---------------------------------------------------------------- page
+
+/** The page's controls of a material's kind. */
+export const materialControls = (m: Material): readonly MaterialControl[] => kindOf(m).controls;
+export const kindLabel = (type: string) => BY_TYPE.get(type)?.label ?? type;
+
+/**
+ * The material after switching `current` to kind `to`; emission is kept.
+ * With `remembered` (the object's last material of that kind) its
+ * parameters come back; otherwise the kind's `fromOther`.
+ */
+export function switchMaterialType(current: Material, to: MaterialType, remembered?: Material): Material {
+  if (current.type === to) return structuredClone(current);
+  const e = current.emission ? { emission: structuredClone(current.emission) } : {};
+  if (remembered?.type === to) {
+    const { emission: _dropped, ...parameters } = structuredClone(remembered);
+    return { ...parameters, ...e } as Material;
+  }
+  const from = current as { color?: Vec3; roughness?: number };
+  return { ...(BY_TYPE.get(to)!.fromOther({ color: from.color, roughness: from.roughness }) as Material), ...e };
+}
+
+// ---------------------------------------------------------------- records
+
+/**
+ * A material record: texel 0 is [emission.rgb, tag | flags] for every kind;
+ * the kind's fields follow. Tags are the kinds' indices in KINDS, then the
+ * emitter-only material of the `lights`; flags sit above the tag's bits.
+ */
+const HEADER_FIELDS: [string, 'vec3' | 'int'][] = [['emission', 'vec3'], ['type', 'int']];
+const upperName = (type: string) => type.replace(/([a-z])([A-Z])/g, '$1_$2').toUpperCase();
+const capitalized = (type: string) => type[0].toUpperCase() + type.slice(1);
+
+export const MATERIAL_TAGS: Readonly<Record<string, number>> = {
+  ...Object.fromEntries(KINDS.map((k, i) => [k.type, i])),
+  emitterOnly: KINDS.length,
+};
+/** The tag's bits of texel 0's w; the flags above them. */
+const TAG_MASK = 15;
+const FLAG_TWO_SIDED = 16;
+
+const LAYOUTS = new Map<string, RecordLayout>(KINDS.map((k) => [k.type, defineRecord(`${capitalized(k.type)}Material`, [...HEADER_FIELDS, ...k.fields])]));
+/** Texels per material record: the largest kind's. */
+export const MATERIAL_TEXELS = Math.max(...[...LAYOUTS.values()].map((l) => l.texels));
+
+/**
+ * The record of a material. `twoSided`: the integrator turns the shading
+ * frame towards the viewer (Mitsuba's `twosided`), written where the
+ * material is on a mesh and is not a solid's boundary.
+ */
+export function packMaterial(m: Material, onMesh: boolean): Float32Array {
+  const kind = kindOf(m);
+  const flags = onMesh && !kind.solid ? FLAG_TWO_SIDED : 0;
+  const e = m.emission;
+  const emitted: Vec3 = e ? [e.color[0] * e.intensity, e.color[1] * e.intensity, e.color[2] * e.intensity] : [0, 0, 0];
+  const record = packRecord(LAYOUTS.get(m.type)!, { emission: emitted, type: MATERIAL_TAGS[m.type] + flags, ...kind.pack(m) });
+  const out = new Float32Array(MATERIAL_TEXELS * 4);
+  out.set(record);
+  return out;
+}
+
+/** A record read back into its kind's named fields (`type` the kind, or "emitterOnly"), for tests and tools. */
+export function unpackMaterial(record: Float32Array): Record<string, number | number[] | string | boolean> {
+  const word = record[3];
+  const type = Object.keys(MATERIAL_TAGS).find((t) => MATERIAL_TAGS[t] === (word & TAG_MASK))!;
+  const layout = LAYOUTS.get(type);
+  const out: Record<string, number | number[] | string | boolean> = { type, twoSided: (word & FLAG_TWO_SIDED) !== 0, emission: Array.from(record.subarray(0, 3)) };
+  for (const f of layout?.fields.slice(HEADER_FIELDS.length) ?? []) {
+    const at = f.texel * 4 + f.offset;
+    out[f.name] = f.type === 'vec3' ? Array.from(record.subarray(at, at + 3)) : record[at];
+  }
+  return out;
+}
+
+/** A `lights` entry: emits `radiance`, reflects nothing. */
+export function packEmitterOnly(radiance: Vec3): Float32Array {
+  const out = new Float32Array(MATERIAL_TEXELS * 4);
+  out.set([...radiance, MATERIAL_TAGS.emitterOnly]);
+  return out;
+}
+
+// ---------------------------------------------------------------- program variants
+
+/** The kinds (besides the default, always compiled) whose code a scene with these materials needs. */
+export function materialFeatures(materials: Iterable<Material>): string[] {
+  const used = new Set<string>();
+  for (const m of materials) if (m.type !== DEFAULT_KIND.type) used.add(m.type);
+  return MATERIAL_TYPE_NAMES.filter((t) => used.has(t));
+}
+/** Every kind but the default: the test kernels compile them all. */
+export const ALL_MATERIAL_FEATURES: readonly string[] = MATERIAL_TYPE_NAMES.filter((t) => t !== DEFAULT_KIND.type);
+
+/** HAS_<KIND> per kind, and how many texels of a record the loader fetches (the largest used kind's). */
+export function materialFeatureDefines(features: readonly string[]): Record<string, number> {
+  const used = [DEFAULT_KIND.type, ...features];
+  return {
+    ...Object.fromEntries(KINDS.filter((k) => k !== DEFAULT_KIND).map((k) => [`HAS_${upperName(k.type)}`, features.includes(k.type) ? 1 : 0])),
+    MATERIAL_FETCHED_TEXELS: Math.max(...used.map((t) => LAYOUTS.get(t)!.texels)),
+  };
+}
+
+/** MATERIAL_<TAG> and the record's constants. */
+export function materialDefines(): Record<string, number> {
+  return {
+    ...Object.fromEntries(Object.entries(MATERIAL_TAGS).map(([type, tag]) => [`MATERIAL_${upperName(type)}`, tag])),
+    MATERIAL_TEXELS,
+    MATERIAL_TAG_MASK: TAG_MASK,
+    MATERIAL_FLAG_TWO_SIDED: FLAG_TWO_SIDED,
+  };
+}
+
+/** The kinds' GLSL chunks, in KINDS order. */
+export const MATERIAL_CHUNK_NAMES: readonly string[] = KINDS.map((k) => k.glsl);
+
+// ---------------------------------------------------------------- generated GLSL
+
+const texelNames = (from: number) => Array.from({ length: MATERIAL_TEXELS - from }, (_, i) => `t${i + from}`);
+const SWIZZLE = 'xyzw';
+const SIZES = { float: 1, int: 1, vec3: 3, vec4: 4 } as const;
+
+/** The kind's parameter struct and its reader from a Bsdf's texels. */
+function paramsGlsl(kind: MaterialKind<Material>): string {
+  const layout = LAYOUTS.get(kind.type)!;
+  const fields = layout.fields.slice(HEADER_FIELDS.length);
+  const name = `${capitalized(kind.type)}Params`;
+  const members = fields.map((f) => `  ${f.type} ${f.name};`).join('\n');
+  const reads = fields.map((f) => {
+    const read = `b.t${f.texel}.${SWIZZLE.slice(f.offset, f.offset + SIZES[f.type])}`;
+    return `  p.${f.name} = ${f.type === 'int' ? `int(${read})` : read};`;
+  });
+  return `struct ${name} {\n${members}\n};\n${name} ${kind.type}Params(Bsdf b) {\n  ${name} p;\n${reads.join('\n')}\n  return p;\n}`;
+}
+
+/**
+ * The Material record as stored (its raw texels, read with as many fetches
+ * as the program's kinds need), its header's accessors, the Bsdf (a kind's
+ * parameters evaluated at a surface point: surface.glsl's evalMaterial) and
+ * each kind's parameter struct.
+ */
+export function materialGlsl(): string {
+  const texels = texelNames(0);
+  const fetches = texels.map((t, i) => {
+    const fetch = `  m.${t} = sceneData(first + ${i});`;
+    return i < 2 ? fetch : `#if MATERIAL_FETCHED_TEXELS > ${i}\n${fetch}\n#else\n  m.${t} = vec4(0.0);\n#endif`;
+  });
+  return [
+    '// Generated from src/materials/registry.ts: do not edit.',
+    `struct Material {\n${texels.map((t) => `  vec4 ${t};`).join('\n')}\n};`,
+    `Material readMaterial(int first) {\n  Material m;\n${fetches.join('\n')}\n  return m;\n}`,
+    `// A record given as texels (the test kernels' uniform).\nMaterial materialOf(vec4 texels[MATERIAL_TEXELS]) {\n  Material m;\n${texels.map((t, i) => `  m.${t} = texels[${i}];`).join('\n')}\n  return m;\n}`,
+    'vec3 materialEmission(Material m) { return m.t0.xyz; }',
+    'int materialType(Material m) { return int(m.t0.w) & MATERIAL_TAG_MASK; }',
+    'bool materialTwoSided(Material m) { return (int(m.t0.w) & MATERIAL_FLAG_TWO_SIDED) != 0; }',
+    `struct Bsdf {\n  int type;\n  bool twoSided;\n${texelNames(1).map((t) => `  vec4 ${t};`).join('\n')}\n};`,
+    `// The record's constant parameters (surface.glsl's evalMaterial starts from them).\nBsdf bsdfFromRecord(Material m) {\n  Bsdf b;\n  b.type = materialType(m);\n  b.twoSided = materialTwoSided(m);\n${texelNames(1).map((t) => `  b.${t} = m.${t};`).join('\n')}\n  return b;\n}`,
+    ...KINDS.map(paramsGlsl),
+  ].join('\n');
+}
+
+interface DispatchedFunction {
+  result: string;
+  name: string;
+  params: string;
+  args: string;
+}
+const DISPATCHED: DispatchedFunction[] = [
+  { result: 'vec3', name: 'Eval', params: 'Bsdf b, vec3 wo, vec3 wi, out float pdf', args: 'b, wo, wi, pdf' },
+  {
+    result: 'vec3',
+    name: 'SampleDirection',
+    params: 'Bsdf b, vec3 wo, vec3 u, vec2 circle, out bool isDelta, out vec3 deltaWeight',
+    args: 'b, wo, u, circle, isDelta, deltaWeight',
+  },
+  { result: 'bool', name: 'HasNonDeltaLobe', params: 'Bsdf b', args: 'b' },
+  { result: 'bool', name: 'IsDelta', params: 'Bsdf b', args: 'b' },
+  { result: 'vec3', name: 'DeltaTint', params: 'Bsdf b, vec3 wo, vec3 wi', args: 'b, wo, wi' },
+  { result: 'vec3', name: 'Albedo', params: 'Bsdf b', args: 'b' },
+  { result: 'float', name: 'GuideWeight', params: 'Bsdf b', args: 'b' },
+];
+
+/**
+ * The BSDF interface (bsdfEval, bsdfSampleDirection, ...): one dispatch on
+ * the kind each. The code of a kind the scene does not use is compiled out
+ * (HAS_<KIND>): SwiftShader runs every branch under lane masks, so unused
+ * kinds would still cost their full price. The default kind is the
+ * fall-through.
+ */
+export function bsdfDispatchGlsl(): string {
+  const others = KINDS.filter((k) => k !== DEFAULT_KIND);
+  const functions = DISPATCHED.map((f) => {
+    const cases = others.map(
+      (k) => `#if HAS_${upperName(k.type)}\n  if (b.type == MATERIAL_${upperName(k.type)}) return ${k.type}${f.name}(${f.args});\n#endif`,
+    );
+    return `${f.result} bsdf${f.name}(${f.params}) {\n${cases.join('\n')}\n  return ${DEFAULT_KIND.type}${f.name}(${f.args});\n}`;
+  });
+  return ['// Generated from src/materials/registry.ts: do not edit.', ...functions].join('\n');
+}
