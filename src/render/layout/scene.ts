@@ -1,6 +1,6 @@
 /**
  * The packed scene, defined once. Tables (materials, spheres, emitters) live
- * in one RGBA32F data texture (rows of SCENE_ROW_TEXELS) read with texelFetch; per-scene constants (the
+ * in one RGBA32F data texture read with texelFetch; per-scene constants (the
  * header and the caustic guides) live in a small uniform block read with
  * constant indices. `packScene` writes both; the shaders read them through
  * the defines and loaders generated here (`sceneLayoutDefines`,
