@@ -59,7 +59,7 @@ export interface MeshEmitterSlots {
 }
 
 export interface PackedScene {
-  /** The data texture: DATA_TEXELS RGBA32F texels. */
+  /** The data texture: DATA_TEXELS RGBA32F texels (DATA_ROWS rows of SCENE_ROW_TEXELS). */
   data: Float32Array;
   /** The uniform block: BLOCK_VEC4S vec4s. */
   block: Float32Array;

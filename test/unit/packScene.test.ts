@@ -9,6 +9,8 @@ import { BASE_FEATURES } from '../../src/render/packScene';
 import { materialGlsl, unpackMaterial } from '../../src/materials/registry';
 import { packScene } from '../../src/render/packScene';
 import { parseScene } from '../../src/scene/schema';
+import { DATA_ROWS, SCENE_ROW_TEXELS, TABLE_TEXELS, sceneLayoutDefines } from '../../src/render/layout/scene';
+import { MAX_SPHERES } from '../../src/scene/limits';
 
 const camera = { position: [0, 1, 5], target: [0, 0, 0] };
 
@@ -211,5 +213,44 @@ describe('selectCausticGuides', () => {
     expect(selectCausticGuides(spheresOf({ spheres: [mirror(0)] }))).toEqual([]);
     const glass = { center: [0, 1, 0], radius: 1, material: { type: 'dielectric' } };
     expect(selectCausticGuides(spheresOf({ version: 2, lights: [light(10)], spheres: [glass] }))).toEqual([]);
+  });
+});
+
+describe('the data texture in rows', () => {
+  it('is DATA_ROWS whole rows of 2048 texels, the last row the one the tables end in', () => {
+    expect(SCENE_ROW_TEXELS).toBe(2048);
+    expect(DATA_TEXELS).toBe(DATA_ROWS * SCENE_ROW_TEXELS);
+    expect(TABLE_TEXELS).toBeLessThanOrEqual(DATA_TEXELS);
+    expect(TABLE_TEXELS).toBeGreaterThan(DATA_TEXELS - SCENE_ROW_TEXELS);
+    expect(DATA_ROWS).toBeGreaterThan(1);
+    const defines = sceneLayoutDefines();
+    expect(defines.SCENE_ROW_TEXELS).toBe(SCENE_ROW_TEXELS);
+    expect(1 << defines.SCENE_ROW_BITS).toBe(SCENE_ROW_TEXELS);
+  });
+
+  it('packs a record beyond texel 2048 where SECTIONS says, with its own material beyond texel 2048 too', () => {
+    // Enough spheres that the material table alone runs into the second row.
+    const count = Math.ceil(SCENE_ROW_TEXELS / MATERIAL.texels) + 8;
+    expect(count).toBeLessThanOrEqual(MAX_SPHERES);
+    const color = (i: number) => [(i % 7) / 7, (i % 11) / 11, (i % 13) / 13];
+    const spheres = Array.from({ length: count }, (_, i) => ({ center: [i, -i, 2 * i], radius: 1 + i / 1000, material: { color: color(i), roughness: 1 } }));
+    const packed = packScene(parseScene({ camera, spheres }));
+    expect(packed.data.length % (SCENE_ROW_TEXELS * 4)).toBe(0);
+    expect(packed.data.length).toBe(DATA_TEXELS * 4);
+    const last = count - 1;
+    const sphereTexel = SECTIONS.spheres + last * SPHERE.texels;
+    expect(sphereTexel).toBeGreaterThanOrEqual(SCENE_ROW_TEXELS);
+    const sphere = readRecord(packed.data, SECTIONS.spheres, SPHERE, last);
+    expect(sphere.center).toEqual([last, -last, 2 * last]);
+    expect(sphere.radius).toBeCloseTo(1 + last / 1000, 6);
+    const materialTexel = SECTIONS.materials + (sphere.material as number) * MATERIAL.texels;
+    expect(materialTexel).toBeGreaterThanOrEqual(SCENE_ROW_TEXELS);
+    const material = readRecord(packed.data, SECTIONS.materials, MATERIAL, sphere.material as number);
+    (material.color as number[]).forEach((c, k) => expect(c).toBeCloseTo(color(last)[k], 6));
+    // The shader's address of a texel, (texel & 2047, texel >> 11), names the same float.
+    const at = (texel: number) => ((texel >> 11) * SCENE_ROW_TEXELS + (texel & (SCENE_ROW_TEXELS - 1))) * 4;
+    expect(packed.data[at(sphereTexel)]).toBe(last);
+    // Past the tables the rectangle is padding, zero.
+    expect(packed.data.subarray(TABLE_TEXELS * 4).every((v) => v === 0)).toBe(true);
   });
 });

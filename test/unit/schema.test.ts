@@ -4,6 +4,7 @@ import { describe, expect, it } from 'vitest';
 import {
   DEFAULT_SCENE_JSON,
   MAX_LIGHTS,
+  MAX_MESHES,
   MAX_REPORTED_ISSUES,
   MAX_SCENE_BYTES,
   MAX_SPHERES,
@@ -183,6 +184,11 @@ describe('valid scenes', () => {
     expect(scene.lights).toHaveLength(MAX_LIGHTS);
   });
 
+  it('accepts exactly the maximum number of meshes', () => {
+    const scene = parseScene({ ...minimal(), version: 2, meshes: Array(MAX_MESHES).fill({ file: 'a.obj' }) });
+    expect(scene.meshes).toHaveLength(MAX_MESHES);
+  });
+
   it('returns a fresh object that shares nothing with the input', () => {
     const input = fixture('glossy');
     const scene = parseScene(input);
@@ -285,8 +291,9 @@ const BAD_SCENES: [string, unknown, string, string][] = [
   ['spheres as an object', edited((s) => (s.spheres = {})), 'spheres', 'must be an array'],
   ['a sphere as a number', edited((s) => (s.spheres[3] = 7)), 'spheres[3]', 'must be an object'],
   ['a sphere without radius', edited((s) => delete s.spheres[4].radius), 'spheres[4].radius', 'required'],
-  ['too many spheres', edited((s) => (s.spheres = Array(MAX_SPHERES + 1).fill(s.spheres[0]))), 'spheres', 'at most 128 spheres'],
-  ['too many lights', edited((s) => (s.lights = Array(MAX_LIGHTS + 1).fill(s.lights[0]))), 'lights', 'at most 16 lights'],
+  ['too many spheres', edited((s) => (s.spheres = Array(MAX_SPHERES + 1).fill(s.spheres[0]))), 'spheres', `at most ${MAX_SPHERES} spheres`],
+  ['too many lights', edited((s) => (s.lights = Array(MAX_LIGHTS + 1).fill(s.lights[0]))), 'lights', `at most ${MAX_LIGHTS} lights`],
+  ['too many meshes', v2((s) => (s.meshes = Array(MAX_MESHES + 1).fill({ file: 'a.obj' }))), 'meshes', `at most ${MAX_MESHES} meshes`],
   ['an unknown top-level key', edited((s) => (s.background = 1)), 'background', 'unknown key'],
   ['an unknown sphere key', edited((s) => (s.spheres[0].colour = [1, 0, 0])), 'spheres[0].colour', 'unknown key'],
   ['an unknown material key', edited((s) => (s.spheres[1].material.metal = true)), 'spheres[1].material.metal', 'unknown key'],
@@ -420,7 +427,7 @@ describe('hostile inputs', () => {
 
   it('names the array when there are too many spheres', () => {
     expect(issuesOf({ ...minimal(), spheres: Array(1e6).fill({}) })).toEqual([
-      { path: 'spheres', message: 'at most 128 spheres' },
+      { path: 'spheres', message: `at most ${MAX_SPHERES} spheres` },
     ]);
   });
 });

@@ -116,8 +116,22 @@ export const SECTIONS = {
   meshes:
     MAX_MATERIALS * MATERIAL.texels + MAX_SCENE_SPHERES * SPHERE.texels + MAX_EMITTERS * EMITTER.texels + MAX_EMITTERS * EMITTER_CHOICE.texels,
 } as const;
-/** Width of the data texture (one row). */
-export const DATA_TEXELS = SECTIONS.meshes + MAX_MESHES * MESH.texels;
+/**
+ * Width of a row of the data texture: the tables run on from one row into the
+ * next (a record may straddle two rows; each texel is addressed on its own).
+ * 2048 is the widest texture every WebGL2 device must support
+ * (MAX_TEXTURE_SIZE >= 2048), and a power of two, so sceneData splits a texel
+ * index with a mask and a shift (SCENE_ROW_BITS).
+ */
+export const SCENE_ROW_TEXELS = 2048;
+const SCENE_ROW_BITS = Math.log2(SCENE_ROW_TEXELS);
+if (!Number.isInteger(SCENE_ROW_BITS)) throw new Error('SCENE_ROW_TEXELS must be a power of two');
+/** Texels the tables fill, from texel 0. */
+export const TABLE_TEXELS = SECTIONS.meshes + MAX_MESHES * MESH.texels;
+/** Height of the data texture: the rows the tables need. */
+export const DATA_ROWS = Math.ceil(TABLE_TEXELS / SCENE_ROW_TEXELS);
+/** Texels of the data texture, DATA_ROWS whole rows (past TABLE_TEXELS: padding, 0). */
+export const DATA_TEXELS = DATA_ROWS * SCENE_ROW_TEXELS;
 /** vec4s of the uniform block: the header, then the guides. */
 export const BLOCK_VEC4S = HEADER.texels + MAX_GUIDES * GUIDE_VEC4S;
 
@@ -137,6 +151,8 @@ export function sceneLayoutDefines(): Record<string, number> {
     EMITTERS_FIRST: SECTIONS.emitters,
     EMITTER_CHOICES_FIRST: SECTIONS.emitterChoices,
     MESHES_FIRST: SECTIONS.meshes,
+    SCENE_ROW_TEXELS,
+    SCENE_ROW_BITS,
     MAX_SCENE_SPHERES,
     HEADER_TEXELS: HEADER.texels,
     BLOCK_VEC4S,

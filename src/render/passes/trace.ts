@@ -5,7 +5,7 @@ import { Program } from '../gl/program';
 import type { PingPong } from '../gl/targets';
 import { missingAssets, type SceneAssets } from '../../scene/assets';
 import { SceneError } from '../../scene/schema';
-import { BLOCK_VEC4S, DATA_TEXELS } from '../layout/scene';
+import { BLOCK_VEC4S, DATA_ROWS, SCENE_ROW_TEXELS } from '../layout/scene';
 import { AssetTextures, environmentDistribution } from './assetTextures';
 import { BASE_FEATURES, packScene, type SceneFeatures } from '../packScene';
 import type { SamplerKind } from '../sampling';
@@ -79,7 +79,7 @@ export class TracePass {
     gl.bindBuffer(gl.UNIFORM_BUFFER, null);
     this.sceneTexture = gl.createTexture()!;
     gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
-    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, DATA_TEXELS, 1);
+    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, SCENE_ROW_TEXELS, DATA_ROWS);
     gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
     gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
     gl.bindTexture(gl.TEXTURE_2D, null);
@@ -115,7 +115,7 @@ export class TracePass {
     gl.bufferSubData(gl.UNIFORM_BUFFER, 0, packed.block);
     gl.bindBuffer(gl.UNIFORM_BUFFER, null);
     gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
-    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, DATA_TEXELS, 1, gl.RGBA, gl.FLOAT, packed.data);
+    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, SCENE_ROW_TEXELS, DATA_ROWS, gl.RGBA, gl.FLOAT, packed.data);
     gl.bindTexture(gl.TEXTURE_2D, null);
     this.program = this.programFor(packed.features);
     const frame = cameraFrame(scene.camera);

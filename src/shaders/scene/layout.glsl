@@ -3,10 +3,11 @@
 // SphereRecord, Emitter, Header: read<Name>(firstTexel)) are generated into
 // the chunk after this one; scene/access.glsl names what the rest reads.
 
-// The tables, one texel per vec4 in row 0: in SwiftShader a texelFetch costs
+// The tables, one texel per vec4, running on from row to row (rows of
+// SCENE_ROW_TEXELS = 2^SCENE_ROW_BITS texels): in SwiftShader a texelFetch costs
 // far less than a dynamically indexed (per-lane, bounds-checked) uniform read.
 uniform highp sampler2D uSceneData;
-vec4 sceneData(int texel) { return texelFetch(uSceneData, ivec2(texel, 0), 0); }
+vec4 sceneData(int texel) { return texelFetch(uSceneData, ivec2(texel & (SCENE_ROW_TEXELS - 1), texel >> SCENE_ROW_BITS), 0); }
 
 // Per-scene constants, read with constant indices only.
 layout(std140) uniform SceneBlock {
