@@ -54,9 +54,12 @@ export const EMITTER = defineRecord('Emitter', [
 
 /**
  * A mesh: `areaPdf` is the density, per unit area, with which light sampling
- * picks a point on it (0 when it does not emit), for the MIS weight of a hit.
+ * picks a point on it (0 when it does not emit), for the MIS weight of a hit;
+ * `materialBase` the material-table index of its material 0: a hit's
+ * material is materialBase + the triangle's mesh-local material index
+ * (src/render/bvh/pack.ts), so the BVH holds no global material slot.
  */
-export const MESH = defineRecord('MeshRecord', [['areaPdf', 'float']]);
+export const MESH = defineRecord('MeshRecord', [['areaPdf', 'float'], ['materialBase', 'int']]);
 
 /**
  * An instance of a BVH group (src/render/bvh/groups.ts), in the instance
