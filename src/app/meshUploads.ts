@@ -113,11 +113,11 @@ export class MeshUploads {
     this.building = state.key;
     showState('building');
     const started = performance.now();
-    buildBvhAsync(bvhInputs(snapshot, assets, state.materials)).then(
+    buildBvhAsync(bvhInputs(snapshot, assets)).then(
       (packed) => {
         this.lastBuildMs = performance.now() - started;
         if (typeof document !== 'undefined') document.body.dataset.meshBuildMs = this.lastBuildMs.toFixed(0);
-        offerBvh(snapshot, assets, state.materials, packed);
+        offerBvh(snapshot, assets, packed);
         this.building = null;
         this.builtKey = state.key;
         this.showBuilt(snapshot, state.key);

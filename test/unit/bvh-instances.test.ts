@@ -140,7 +140,7 @@ describe('queries through an instance', async () => {
     fc.assert(
       fc.property(transformArb, fc.nat(), fc.constantFrom(0, 1), (transform: MeshTransform, seed, which) => {
         const data = shapes[which];
-        const shared = buildAndPackGroups([[triangleSoup(50, seed, 3, 0)], [{ ...data, material: -1, mesh: -1 }]]);
+        const shared = buildAndPackGroups([[triangleSoup(50, seed, 3, 0)], [{ ...data, material: 0, mesh: -1 }]]);
         const toWorld = meshToWorldMatrix(transform);
         const copy: BvhMeshInput = { ...transformMesh(data, transform), material: 0 };
         const world = packBvh(buildBvh([copy]), [copy]);
@@ -181,7 +181,7 @@ describe('queries through an instance', async () => {
       }),
     );
     const dense = icosphere(6, true); // 81920 triangles: two more copies would add 163840
-    const stored = (data: TriangleMesh) => buildAndPackGroups(bvhInputs(scene, { maps: new Map(), meshes: new Map([['model.ply', data]]) }, [0, 1, 2]));
+    const stored = (data: TriangleMesh) => buildAndPackGroups(bvhInputs(scene, { maps: new Map(), meshes: new Map([['model.ply', data]]) }));
     expect(stored(dense).triangleCount).toBe(dense.indices.length / 3);
     expect(stored(bunny).triangleCount).toBe(3 * (bunny.indices.length / 3));
   });

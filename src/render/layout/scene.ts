@@ -65,8 +65,9 @@ export const MESH = defineRecord('MeshRecord', [['areaPdf', 'float'], ['material
  * An instance of a BVH group (src/render/bvh/groups.ts), in the instance
  * table (its own small texture, scene/instances.glsl): the rows of its
  * world-to-object and object-to-world matrices (3x4: a row dotted with
- * (x, y, z, 1)), its group's root node, and the material and mesh its
- * triangles take (-1: each triangle's own, as in the world group).
+ * (x, y, z, 1)), its group's root node, and the mesh its triangles take
+ * (-1: each triangle's own, as in the world group); the mesh's record gives
+ * the material.
  */
 export const INSTANCE = defineRecord('InstanceRecord', [
   ['toObjectX', 'vec4'],
@@ -76,7 +77,6 @@ export const INSTANCE = defineRecord('InstanceRecord', [
   ['toWorldY', 'vec4'],
   ['toWorldZ', 'vec4'],
   ['root', 'int'],
-  ['material', 'int'],
   ['mesh', 'int'],
 ]);
 
