@@ -185,4 +185,19 @@ describe('queries through an instance', async () => {
     expect(stored(dense).triangleCount).toBe(dense.indices.length / 3);
     expect(stored(bunny).triangleCount).toBe(3 * (bunny.indices.length / 3));
   });
+
+  it("the BVH's texels depend on the meshes' geometry only: not on spheres, lights, the ground or materials", () => {
+    const meshes: Mesh[] = [mesh('a'), { ...mesh('b'), position: [1, 0, 0] }];
+    const plain = sceneWith(meshes);
+    const assets = { maps: new Map(), meshes: new Map([['a', bunny], ['b', icosphere(2, false)]]) };
+    const texels = (scene: Scene) => buildAndPackGroups(bvhInputs(scene, assets)).texture.data;
+    const edited: Scene = {
+      ...plain,
+      spheres: [{ center: [0, 2, 0], radius: 0.5, material: white }],
+      lights: [{ position: [0, 3, 0], radius: 0.2, color: [1, 1, 1], intensity: 5 }],
+      ground: plain.ground ? null : { height: -1, material: white },
+      meshes: meshes.map((m, i) => ({ ...m, material: { type: 'standard', color: [0.2 * i, 0.5, 0.5], roughness: 0.3 } })),
+    };
+    expect(texels(edited)).toEqual(texels(plain));
+  });
 });
