@@ -45,7 +45,7 @@ export async function sceneBvh(sceneName: string): Promise<{ packed: PackedBvh; 
   const scene = parseSceneText(readFileSync(sceneFile, 'utf8'));
   const { assets } = await readSceneFiles(scene, sceneFile);
   // One world-space BVH of every mesh (no instancing): the traversal benchmarks' rays are world rays.
-  const inputs = bvhInputs({ ...scene, meshes: scene.meshes.map((m, i) => ({ ...m, file: `${m.file}#${i}` })) }, { ...assets, meshes: new Map(scene.meshes.map((m, i) => [`${m.file}#${i}`, assets.meshes.get(m.file)!])) }, scene.meshes.map((_, i) => i)).flat();
+  const inputs = bvhInputs({ ...scene, meshes: scene.meshes.map((m, i) => ({ ...m, file: `${m.file}#${i}` })) }, { ...assets, meshes: new Map(scene.meshes.map((m, i) => [`${m.file}#${i}`, assets.meshes.get(m.file)!])) }).flat();
   return { packed: packBvh(buildBvh(inputs), inputs), scene };
 }
 

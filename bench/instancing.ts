@@ -70,7 +70,7 @@ async function main(): Promise<void> {
   const stored = (copies: boolean) => {
     const scene = row('sphere.ply', spheres, copies, 0.4, width, height);
     const assets = { maps: new Map(), meshes: new Map(scene.meshes.map((m) => [m.file, sphere])) };
-    const groups = bvhInputs(scene, assets, scene.meshes.map((_, i) => i));
+    const groups = bvhInputs(scene, assets);
     const triangles = groups.flat().reduce((n, m) => n + m.indices.length / 3, 0);
     if (triangles > MAX_TRIANGLES) return { triangles, bytes: null, buildMs: null };
     const t0 = performance.now();

@@ -1,7 +1,8 @@
 /**
  * Scene uploads that never freeze the page on a large mesh. The renderer
  * rebuilds the BVH on the calling thread whenever a mesh's data, transform or
- * material slot changes (src/render/passes/assetTextures.ts); the page
+ * grouping changes (src/render/passes/assetTextures.ts; materials, spheres,
+ * lights and the ground never rebuild it); the page
  * instead builds it in the
  * BVH worker (buildBvhAsync) and uploads the scene when it is ready, handing
  * the renderer the result (offerBvh). Until then the image keeps showing the
@@ -9,7 +10,6 @@
  * finishes, the latest scene is uploaded (or built for, if its meshes moved
  * again). Scenes without meshes upload at once.
  */
-import { packScene } from '../render/packScene';
 import { groupMeshes, trianglesIn } from '../render/bvh/groups';
 import { buildBvhAsync } from '../render/bvh/buildAsync';
 import { bvhInputs, offerBvh } from '../render/passes/assetTextures';
@@ -36,22 +36,21 @@ const dataId = (data: TriangleMesh | undefined) => {
 
 interface MeshState {
   /**
-   * Everything the BVH depends on: data identity, grouping, material slots,
-   * the copied meshes' transforms (an instance's move needs no new BVH).
+   * Everything the BVH depends on: data identity, grouping, the copied
+   * meshes' transforms (an instance's move needs no new BVH; nor does a
+   * material, which the mesh records give).
    */
   key: string;
   triangles: number;
-  materials: number[];
 }
 
 function meshState(scene: Scene, assets: SceneAssets): MeshState {
-  const materials = scene.meshes.length ? packScene(scene).meshMaterials : [];
   const data = scene.meshes.map((m) => assets.meshes.get(m.file));
   const groups = groupMeshes(scene, trianglesIn(assets));
   const copies = groups.world.map((i) => [scene.meshes[i].position, scene.meshes[i].rotation, scene.meshes[i].scale]);
-  const key = JSON.stringify([data.map(dataId), groups, copies, materials]);
+  const key = JSON.stringify([data.map(dataId), groups, copies]);
   const triangles = data.reduce((sum, d) => sum + (d ? d.indices.length / 3 : 0), 0);
-  return { key, triangles, materials };
+  return { key, triangles };
 }
 
 export class MeshUploads {
@@ -98,7 +97,8 @@ export class MeshUploads {
    * When the meshes moved again during a build (a drag), shows the built step
    * at once, so a long drag updates the image after every build rather than
    * only when it stops; the page's other edits go with it when they leave
-   * the meshes' material slots as built. upload() then builds for the latest.
+   * the BVH as built (the meshes' materials, spheres, lights and the ground
+   * always do). upload() then builds for the latest.
    */
   private showBuilt(snapshot: Scene, key: string): void {
     const { scene, assets } = this.current();
@@ -113,11 +113,11 @@ export class MeshUploads {
     this.building = state.key;
     showState('building');
     const started = performance.now();
-    buildBvhAsync(bvhInputs(snapshot, assets, state.materials)).then(
+    buildBvhAsync(bvhInputs(snapshot, assets)).then(
       (packed) => {
         this.lastBuildMs = performance.now() - started;
         if (typeof document !== 'undefined') document.body.dataset.meshBuildMs = this.lastBuildMs.toFixed(0);
-        offerBvh(snapshot, assets, state.materials, packed);
+        offerBvh(snapshot, assets, packed);
         this.building = null;
         this.builtKey = state.key;
         this.showBuilt(snapshot, state.key);

@@ -64,7 +64,7 @@ export interface PackedScene {
   /** The uniform block: BLOCK_VEC4S vec4s. */
   block: Float32Array;
   features: SceneFeatures;
-  /** The material-table index of each of scene.meshes (every triangle of a mesh carries it). */
+  /** The material-table index of each of scene.meshes (its mesh record's materialBase). */
   meshMaterials: number[];
   /** The emissive meshes' triangle slots, in slot order. */
   meshEmitters: MeshEmitterSlots[];
@@ -118,7 +118,6 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     const pdf = alias.pdf[firstMesh + i];
     const record = packRecord(EMITTER, { radiance: m.radiance, pdf, kind: EMITTER_KINDS.mesh, primitive: m.mesh, first: m.first, count: m.count });
     data.set(record, (SECTIONS.emitters + (firstMesh + i) * EMITTER.texels) * 4);
-    data.set(packRecord(MESH, { areaPdf: pdf / m.area }), (SECTIONS.meshes + m.mesh * MESH.texels) * 4);
   });
   powers.forEach((_, i) => {
     const choice = packRecord(EMITTER_CHOICE, { aliasThreshold: alias.threshold[i], alias: alias.alias[i] });
@@ -127,6 +126,9 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
   const groundMaterial = scene.ground ? addMaterial(packMaterial(scene.ground.material, false)) : 0;
   const meshMaterials = scene.meshes.map((mesh) => addMaterial(packMaterial(mesh.material, true)));
   materials.forEach((record, i) => data.set(record, (SECTIONS.materials + i * MATERIAL.texels) * 4));
+
+  const areaPdfs = new Map(meshEmitters.map((m, i) => [m.mesh, alias.pdf[firstMesh + i] / m.area]));
+  meshMaterials.forEach((materialBase, i) => data.set(packRecord(MESH, { areaPdf: areaPdfs.get(i) ?? 0, materialBase }), (SECTIONS.meshes + i * MESH.texels) * 4));
 
   const guides = selectCausticGuides(spheres);
   const environment = scene.environment;

@@ -140,7 +140,7 @@ describe('queries through an instance', async () => {
     fc.assert(
       fc.property(transformArb, fc.nat(), fc.constantFrom(0, 1), (transform: MeshTransform, seed, which) => {
         const data = shapes[which];
-        const shared = buildAndPackGroups([[triangleSoup(50, seed, 3, 0)], [{ ...data, material: -1, mesh: -1 }]]);
+        const shared = buildAndPackGroups([[triangleSoup(50, seed, 3, 0)], [{ ...data, material: 0, mesh: -1 }]]);
         const toWorld = meshToWorldMatrix(transform);
         const copy: BvhMeshInput = { ...transformMesh(data, transform), material: 0 };
         const world = packBvh(buildBvh([copy]), [copy]);
@@ -181,8 +181,23 @@ describe('queries through an instance', async () => {
       }),
     );
     const dense = icosphere(6, true); // 81920 triangles: two more copies would add 163840
-    const stored = (data: TriangleMesh) => buildAndPackGroups(bvhInputs(scene, { maps: new Map(), meshes: new Map([['model.ply', data]]) }, [0, 1, 2]));
+    const stored = (data: TriangleMesh) => buildAndPackGroups(bvhInputs(scene, { maps: new Map(), meshes: new Map([['model.ply', data]]) }));
     expect(stored(dense).triangleCount).toBe(dense.indices.length / 3);
     expect(stored(bunny).triangleCount).toBe(3 * (bunny.indices.length / 3));
+  });
+
+  it("the BVH's texels depend on the meshes' geometry only: not on spheres, lights, the ground or materials", () => {
+    const meshes: Mesh[] = [mesh('a'), { ...mesh('b'), position: [1, 0, 0] }];
+    const plain = sceneWith(meshes);
+    const assets = { maps: new Map(), meshes: new Map([['a', bunny], ['b', icosphere(2, false)]]) };
+    const texels = (scene: Scene) => buildAndPackGroups(bvhInputs(scene, assets)).texture.data;
+    const edited: Scene = {
+      ...plain,
+      spheres: [{ center: [0, 2, 0], radius: 0.5, material: white }],
+      lights: [{ position: [0, 3, 0], radius: 0.2, color: [1, 1, 1], intensity: 5 }],
+      ground: plain.ground ? null : { height: -1, material: white },
+      meshes: meshes.map((m, i) => ({ ...m, material: { type: 'standard', color: [0.2 * i, 0.5, 0.5], roughness: 0.3 } })),
+    };
+    expect(texels(edited)).toEqual(texels(plain));
   });
 });

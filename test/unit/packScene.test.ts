@@ -3,7 +3,7 @@ import { buildAliasTable } from '../../src/render/aliasTable';
 import { selectCausticGuides } from '../../src/render/causticGuides';
 import { defineRecord, packRecord, recordGlsl } from '../../src/render/layout/records';
 import {
-  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, HEADER, MATERIAL, MAX_GUIDES, SECTIONS, SPHERE,
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, HEADER, MATERIAL, MAX_GUIDES, MESH, SECTIONS, SPHERE,
 } from '../../src/render/layout/scene';
 import { BASE_FEATURES } from '../../src/render/packScene';
 import { materialGlsl, unpackMaterial } from '../../src/materials/registry';
@@ -137,6 +137,34 @@ describe('packScene', () => {
     expect(readRecord(packScene(withMap).block, 0, HEADER, 0)).toMatchObject({ emitterCount: 1, environmentPdf: 0 });
   });
 
+  it("writes each mesh record's first material slot (materialBase) and light-sampling density", () => {
+    const scene = (ground: boolean, spheres: number) =>
+      parseScene({
+        version: 2,
+        camera,
+        ...(ground ? { ground: { height: 0, material: { color: [0.5, 0.5, 0.5], roughness: 1 } } } : {}),
+        spheres: Array.from({ length: spheres }, (_, i) => ({ center: [i, 0, 0], radius: 0.5, material: { color: [0.5, 0.5, 0.5], roughness: 1 } })),
+        lights: [{ position: [0, 3, 0], radius: 0.5, intensity: 10 }],
+        meshes: [
+          { file: 'a.obj', material: { type: 'dielectric' } },
+          { file: 'b.obj', material: { color: [1, 1, 1], roughness: 1, emission: { color: [1, 1, 1], intensity: 2 } } },
+        ],
+      });
+    const sizes = [{ area: 2, triangles: 10 }, { area: 4, triangles: 20 }];
+    for (const [ground, spheres] of [[true, 1], [false, 1], [true, 3]] as const) {
+      const packed = packScene(scene(ground, spheres), { meshes: sizes });
+      const records = [0, 1].map((i) => readRecord(packed.data, SECTIONS.meshes, MESH, i));
+      // Spheres, lights, then the ground, then the meshes: the slots shift, the records follow.
+      expect(packed.meshMaterials).toEqual([spheres + 1 + (ground ? 1 : 0), spheres + 2 + (ground ? 1 : 0)]);
+      expect(records.map((r) => r.materialBase)).toEqual(packed.meshMaterials);
+      expect(readMaterial(packed.data, records[0].materialBase as number).type).toBe('dielectric');
+      const emitter = readRecord(packed.data, SECTIONS.emitters, EMITTER, 1);
+      expect(emitter).toMatchObject({ kind: EMITTER_KINDS.mesh, primitive: 1 });
+      expect(records[1].areaPdf).toBeCloseTo((emitter.pdf as number) / 4, 7);
+      expect(records[0].areaPdf).toBe(0);
+    }
+  });
+
   it('packs an empty scene with zero counts and a black environment', () => {
     const empty = packScene(parseScene({ camera }));
     expect(readRecord(empty.block, 0, HEADER, 0)).toMatchObject({ sphereCount: 0, emitterCount: 0, groundEnabled: 0, environment: [0, 0, 0] });
@@ -245,7 +273,7 @@ describe('the data texture in rows', () => {
     expect(sphere.radius).toBeCloseTo(1 + last / 1000, 6);
     const materialTexel = SECTIONS.materials + (sphere.material as number) * MATERIAL.texels;
     expect(materialTexel).toBeGreaterThanOrEqual(SCENE_ROW_TEXELS);
-    const material = readRecord(packed.data, SECTIONS.materials, MATERIAL, sphere.material as number);
+    const material = readMaterial(packed.data, sphere.material as number);
     (material.color as number[]).forEach((c, k) => expect(c).toBeCloseTo(color(last)[k], 6));
     // The shader's address of a texel, (texel & 2047, texel >> 11), names the same float.
     const at = (texel: number) => ((texel >> 11) * SCENE_ROW_TEXELS + (texel & (SCENE_ROW_TEXELS - 1))) * 4;

@@ -14,8 +14,8 @@
 import type { TriangleMesh } from '../../scene/types';
 
 export interface BvhMeshInput extends TriangleMesh {
-  /** Material index carried by every triangle of this mesh (-1 in a shared group: the instance gives it). */
-  material: number;
+  /** Mesh-local material index carried by every triangle of this mesh (default 0); the mesh record's materialBase is added in the shader. */
+  material?: number;
   /** The scene mesh index its triangles carry (default: its position in the input list; -1 in a shared group). */
   mesh?: number;
 }

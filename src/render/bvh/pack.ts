@@ -1,7 +1,7 @@
 /**
  * Packs a BVH and its triangles into one RGBA32F texture for the GLSL
  * traversal (src/shaders/scene/bvh.glsl). Integers (node and triangle
- * indices, counts, material and mesh indices) are stored as float values:
+ * indices, counts, mesh and material indices) are stored as float values:
  * exact below 2^24, and no denormal bit patterns for a GPU to flush.
  *
  * One texture, so that one traversal step fetches the same 4 texels whether
@@ -21,8 +21,17 @@
  * or triangle straddles a row: rows hold 681 triangles (2043 texels).
  * Texels, in order:
  *   rows 0 ..              triangle j (BVH order) at texel triangleTexel(j) =
- *                          (j / 681) * 2048 + (j % 681) * 3 .. + 2: (v0.xyz, material index),
+ *                          (j / 681) * 2048 + (j % 681) * 3 .. + 2: (v0.xyz, local material),
  *                          (v1.xyz, normals texel or -1 when flat), (v2.xyz, mesh index)
+ *                          mesh index: the scene mesh (-1 in a shared group: its
+ *                          instance gives the mesh); local material: the index
+ *                          among the mesh's own materials (0: a mesh has one for
+ *                          now). The material-table index is the mesh record's
+ *                          materialBase + local (layout/scene.ts MESH), looked up
+ *                          once per closest hit, so the texels hold no global
+ *                          material slot: they depend only on the meshes'
+ *                          geometry, transforms and order, never on the
+ *                          spheres, lights, ground or materials.
  *   2044 .. 2047           the root node (node 511), in row 0's spare texels
  *   from the next row      a smooth triangle's vertex normals n0, n1, n2 (unit, w = 0),
  *                          3 texels each, at its normals texel .. + 2
@@ -184,7 +193,7 @@ export function packBvhGroups(groups: BvhGroup[]): PackedBvh {
       const at = firstTriangle[g] + j;
       triangleOrder[at] = firstInput + id;
       mesh = findMesh(meshOf, id, mesh);
-      const { positions, normals, indices, material } = meshes[mesh];
+      const { positions, normals, indices, material = 0 } = meshes[mesh];
       const local = (id - meshOf[mesh]) * 3;
       const o = triangleTexel(at) * 4;
       for (let c = 0; c < 3; c++) {

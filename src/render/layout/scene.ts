@@ -51,16 +51,20 @@ export const EMITTER = defineRecord('Emitter', [
 
 /**
  * A mesh: `areaPdf` is the density, per unit area, with which light sampling
- * picks a point on it (0 when it does not emit), for the MIS weight of a hit.
+ * picks a point on it (0 when it does not emit), for the MIS weight of a hit;
+ * `materialBase` the material-table index of its material 0: a hit's
+ * material is materialBase + the triangle's mesh-local material index
+ * (src/render/bvh/pack.ts), so the BVH holds no global material slot.
  */
-export const MESH = defineRecord('MeshRecord', [['areaPdf', 'float']]);
+export const MESH = defineRecord('MeshRecord', [['areaPdf', 'float'], ['materialBase', 'int']]);
 
 /**
  * An instance of a BVH group (src/render/bvh/groups.ts), in the instance
  * table (its own small texture, scene/instances.glsl): the rows of its
  * world-to-object and object-to-world matrices (3x4: a row dotted with
- * (x, y, z, 1)), its group's root node, and the material and mesh its
- * triangles take (-1: each triangle's own, as in the world group).
+ * (x, y, z, 1)), its group's root node, and the mesh its triangles take
+ * (-1: each triangle's own, as in the world group); the mesh's record gives
+ * the material.
  */
 export const INSTANCE = defineRecord('InstanceRecord', [
   ['toObjectX', 'vec4'],
@@ -70,7 +74,6 @@ export const INSTANCE = defineRecord('InstanceRecord', [
   ['toWorldY', 'vec4'],
   ['toWorldZ', 'vec4'],
   ['root', 'int'],
-  ['material', 'int'],
   ['mesh', 'int'],
 ]);
 

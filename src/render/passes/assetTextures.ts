@@ -5,9 +5,11 @@
  * instanced, and a shared file's object-space triangles once for all the
  * meshes that name it, with the instance table. Each is uploaded only when
  * its inputs change (the map by identity; the BVH when a mesh's data, a
- * copied mesh's transform, a material slot or the grouping changes; moving
- * an instance only rewrites the instance table), so other scene edits
- * re-upload nothing here; map rotation and intensity are uniforms.
+ * copied mesh's transform or the grouping changes: triangles carry their
+ * mesh, not a material slot, so spheres, lights, the ground and materials
+ * never rebuild it; moving an instance only rewrites the instance table;
+ * the emissive-triangle table follows the emissive meshes), so other scene
+ * edits re-upload nothing here; map rotation and intensity are uniforms.
  */
 import { buildEnvironmentDistribution, type EnvironmentDistribution } from '../../scene/envmap';
 import type { SceneAssets } from '../../scene/assets';
@@ -41,28 +43,28 @@ export function environmentDistribution(image: EnvironmentImage): EnvironmentDis
 }
 
 /**
- * What the BVH depends on besides the decoded data and the material slots:
- * the grouping and the copied (world group) meshes' transforms.
+ * What the BVH depends on besides the decoded data: the grouping and the
+ * copied (world group) meshes' transforms.
  */
 function bvhKey(scene: Scene, groups: MeshGroups): string {
   return JSON.stringify([groups, groups.world.map((i) => [scene.meshes[i].position, scene.meshes[i].rotation, scene.meshes[i].scale])]);
 }
 
 /** The BVH's groups of triangles (see groups.ts): the world group's copies (when any), then each shared file's triangles once. */
-export function bvhInputs(scene: Scene, assets: SceneAssets, materials: readonly number[]): BvhMeshInput[][] {
+export function bvhInputs(scene: Scene, assets: SceneAssets): BvhMeshInput[][] {
   const data = (i: number) => assets.meshes.get(scene.meshes[i].file)!;
-  return groupInputs(groupMeshes(scene, trianglesIn(assets)), (i) => transformMesh(data(i), scene.meshes[i]), data, materials);
+  return groupInputs(groupMeshes(scene, trianglesIn(assets)), (i) => transformMesh(data(i), scene.meshes[i]), data);
 }
 
 /**
  * The inputs of the BVH groups: the copies (`copy(i)`, world space) tagged
- * with their material slot and mesh, when any; then each shared file's
- * triangles (`data(i)` of its first mesh) once, untagged (its instances
- * carry material and mesh).
+ * with their mesh, when any; then each shared file's triangles (`data(i)` of
+ * its first mesh) once, untagged (its instances carry the mesh). Every
+ * triangle's mesh-local material is 0 (a mesh has one material).
  */
-function groupInputs(groups: MeshGroups, copy: (i: number) => TriangleMesh, data: (i: number) => TriangleMesh, materials: readonly number[]): BvhMeshInput[][] {
-  const copies = groups.world.map((i) => ({ ...copy(i), material: materials[i], mesh: i }));
-  return [...(copies.length > 0 ? [copies] : []), ...groups.shared.map((users) => [{ ...data(users[0]), material: -1, mesh: -1 }])];
+function groupInputs(groups: MeshGroups, copy: (i: number) => TriangleMesh, data: (i: number) => TriangleMesh): BvhMeshInput[][] {
+  const copies = groups.world.map((i) => ({ ...copy(i), material: 0, mesh: i }));
+  return [...(copies.length > 0 ? [copies] : []), ...groups.shared.map((users) => [{ ...data(users[0]), material: 0, mesh: -1 }])];
 }
 
 /**
@@ -72,8 +74,8 @@ function groupInputs(groups: MeshGroups, copy: (i: number) => TriangleMesh, data
  */
 let prebuilt: { key: string; data: TriangleMesh[]; packed: PackedBvh } | null = null;
 
-export function offerBvh(scene: Scene, assets: SceneAssets, materials: readonly number[], packed: PackedBvh): void {
-  prebuilt = { key: bvhKey(scene, groupMeshes(scene, trianglesIn(assets))) + JSON.stringify(materials), data: scene.meshes.map((m) => assets.meshes.get(m.file)!), packed };
+export function offerBvh(scene: Scene, assets: SceneAssets, packed: PackedBvh): void {
+  prebuilt = { key: bvhKey(scene, groupMeshes(scene, trianglesIn(assets))), data: scene.meshes.map((m) => assets.meshes.get(m.file)!), packed };
 }
 
 function takePrebuilt(key: string, data: TriangleMesh[]): PackedBvh | null {
@@ -93,10 +95,11 @@ export class AssetTextures {
   private world: WorldMeshes | null = null;
   private bvh: {
     world: WorldMeshes;
-    key: string;
     roots: number[];
+    triangleOrder: Uint32Array;
     textures: BvhTextures;
-    emissive: EmissiveTriangles | null;
+    /** The emissive-triangle table and the emitters' slots it was made for. */
+    emissive: { key: string; table: EmissiveTriangles | null };
     instances: InstanceTable | null;
   } | null = null;
 
@@ -134,29 +137,35 @@ export class AssetTextures {
   }
 
   /**
-   * Builds and uploads the BVH of `world` (each mesh's triangles carry
-   * `materials[i]`), its instance table and the emissive-triangle table of
-   * `emitters`, unless nothing they depend on changed.
+   * Builds and uploads the BVH of `world`, unless its meshes' data,
+   * grouping and copies are unchanged (materials do not matter: the mesh
+   * records give them), its instance table, and the emissive-triangle
+   * table of `emitters` unless their slots are unchanged.
    */
-  setMeshes(world: WorldMeshes, materials: readonly number[], emitters: readonly MeshEmitterSlots[]): void {
-    const key = JSON.stringify([materials, emitters]);
-    if (this.bvh && this.bvh.world.key === world.key && this.bvh.world.data === world.data && this.bvh.key === key) {
-      this.bvh.instances?.update(instanceRecords(world, this.bvh.roots, materials));
+  setMeshes(world: WorldMeshes, emitters: readonly MeshEmitterSlots[]): void {
+    const emissiveKey = JSON.stringify(emitters);
+    const emissive = (triangleOrder: Uint32Array) => ({ key: emissiveKey, table: emitters.length > 0 ? new EmissiveTriangles(this.gl, world, triangleOrder, emitters) : null });
+    if (this.bvh && this.bvh.world.key === world.key && this.bvh.world.data === world.data) {
+      this.bvh.instances?.update(instanceRecords(world, this.bvh.roots));
+      if (this.bvh.emissive.key !== emissiveKey) {
+        this.bvh.emissive.table?.dispose();
+        this.bvh.emissive = emissive(this.bvh.triangleOrder);
+      }
       this.bvh.world = world;
       return;
     }
     this.bvh?.textures.dispose();
-    this.bvh?.emissive?.dispose();
+    this.bvh?.emissive.table?.dispose();
     this.bvh?.instances?.dispose();
     this.bvh = null;
     if (world.meshes.length === 0) return;
-    let packed = takePrebuilt(world.key + JSON.stringify(materials), world.data);
+    let packed = takePrebuilt(world.key, world.data);
     if (!packed) {
-      packed = buildAndPackGroups(groupInputs(world.groups, (i) => world.meshes[i]!, (i) => world.data[i], materials));
+      packed = buildAndPackGroups(groupInputs(world.groups, (i) => world.meshes[i]!, (i) => world.data[i]));
     }
-    const emissive = emitters.length > 0 ? new EmissiveTriangles(this.gl, world, packed.triangleOrder, emitters) : null;
-    const instances = world.groups.shared.length > 0 ? new InstanceTable(this.gl, instanceRecords(world, packed.roots, materials)) : null;
-    this.bvh = { world, key, roots: packed.roots, textures: new BvhTextures(this.gl, packed), emissive, instances };
+    const instances = world.groups.shared.length > 0 ? new InstanceTable(this.gl, instanceRecords(world, packed.roots)) : null;
+    const { roots, triangleOrder } = packed;
+    this.bvh = { world, roots, triangleOrder, textures: new BvhTextures(this.gl, packed), emissive: emissive(triangleOrder), instances };
   }
 
   /** Sets the uniforms of the uploaded data on `program` (in use). */
@@ -169,14 +178,14 @@ export class AssetTextures {
   bind(program: Program): void {
     this.environment?.textures.bind(ENVIRONMENT_UNITS);
     this.bvh?.textures.bind(program, BVH_UNIT);
-    this.bvh?.emissive?.bind(program, EMISSIVE_UNIT);
+    this.bvh?.emissive.table?.bind(program, EMISSIVE_UNIT);
     this.bvh?.instances?.bind(program, INSTANCE_UNIT);
   }
 
   dispose(): void {
     this.setEnvironmentMap(null);
     this.bvh?.textures.dispose();
-    this.bvh?.emissive?.dispose();
+    this.bvh?.emissive.table?.dispose();
     this.bvh?.instances?.dispose();
     this.bvh = null;
   }
@@ -228,20 +237,20 @@ function meshArea(mesh: TriangleMesh, toWorld?: Float64Array): number {
 
 /**
  * The instance table (InstanceRecord, layout/scene.ts): the world group
- * first when it is stored (identity, its triangles' own materials), then
- * every mesh of each shared group with its matrices and material slot.
+ * first when it is stored (identity, its triangles' own meshes), then
+ * every mesh of each shared group with its matrices and mesh index.
  */
-function instanceRecords(world: WorldMeshes, roots: readonly number[], materials: readonly number[]): Float32Array {
+function instanceRecords(world: WorldMeshes, roots: readonly number[]): Float32Array {
   const { groups } = world;
   const identity = new Float64Array([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]);
-  const entries: { toWorld: Float64Array; root: number; material: number; mesh: number }[] = [];
-  if (groups.world.length > 0) entries.push({ toWorld: identity, root: roots[0], material: -1, mesh: -1 });
+  const entries: { toWorld: Float64Array; root: number; mesh: number }[] = [];
+  if (groups.world.length > 0) entries.push({ toWorld: identity, root: roots[0], mesh: -1 });
   const firstShared = groups.world.length > 0 ? 1 : 0;
   groups.shared.forEach((users, g) => {
-    for (const i of users) entries.push({ toWorld: world.toWorld[i], root: roots[firstShared + g], material: materials[i], mesh: i });
+    for (const i of users) entries.push({ toWorld: world.toWorld[i], root: roots[firstShared + g], mesh: i });
   });
   const out = new Float32Array(entries.length * INSTANCE.texels * 4);
-  entries.forEach((e, k) => out.set(packRecord(INSTANCE, { ...matrixRows(e.toWorld), root: e.root, material: e.material, mesh: e.mesh }), k * INSTANCE.texels * 4));
+  entries.forEach((e, k) => out.set(packRecord(INSTANCE, { ...matrixRows(e.toWorld), root: e.root, mesh: e.mesh }), k * INSTANCE.texels * 4));
   return out;
 }
 

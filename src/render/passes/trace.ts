@@ -110,7 +110,7 @@ export class TracePass {
     const world = this.assets.worldMeshes(scene, assets);
     const environmentIntegral = map ? environmentDistribution(map).integral : undefined;
     const packed = packScene(scene, { environmentIntegral, meshes: world.sizes, groups: world.groups });
-    this.assets.setMeshes(world, packed.meshMaterials, packed.meshEmitters);
+    this.assets.setMeshes(world, packed.meshEmitters);
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
     gl.bufferSubData(gl.UNIFORM_BUFFER, 0, packed.block);
     gl.bindBuffer(gl.UNIFORM_BUFFER, null);

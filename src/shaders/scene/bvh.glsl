@@ -9,7 +9,8 @@
 //     child c is a leaf of the triangles at texels ref_c (first) .. end_c (after the last)
 //     when end_c > 0, else node ref_c.
 //   Triangle j (BVH order) = texels bvhTriangleTexel(j) .. + 2, 681 to a row (none straddles one):
-//     (v0.xyz, material), (v1.xyz, normals texel or -1 if flat), (v2.xyz, mesh index);
+//     (v0.xyz, local material), (v1.xyz, normals texel or -1 if flat), (v2.xyz, mesh index);
+//     the material-table index is the mesh record's materialBase + local (scene/intersect.glsl);
 //     a smooth triangle's vertex normals n0 n1 n2 at its normals texel .. +2.
 //
 // Traversal, shaped for SwiftShader: it runs a pixel quad's 4 lanes in lock
@@ -67,7 +68,7 @@ struct BvhSurface {
   vec3 position;
   vec3 geometricNormal; // unit, from the counter-clockwise winding v0 v1 v2
   vec3 shadingNormal;   // interpolated vertex normal (smooth), else the geometric normal
-  int material;
+  int localMaterial;  // among the mesh's own: the table's is its MeshRecord.materialBase + this
   int mesh;
 };
 
@@ -268,7 +269,7 @@ BvhSurface bvhSurface(BvhHit hit, mat3 normalMatrix) {
     // Opposite vertex normals can cancel: keep the face normal then.
     if (dot(n, n) > 1e-12) s.shadingNormal = normalize(n);
   }
-  s.material = int(t0.w);
+  s.localMaterial = int(t0.w);
   s.mesh = int(t2.w);
   return s;
 }

@@ -72,7 +72,6 @@ BvhSurface meshSurface(MeshHit hit) {
   mat3 normalMatrix = mat3(r.toObjectX.xyz, r.toObjectY.xyz, r.toObjectZ.xyz);  // columns: the transpose
   BvhSurface s = bvhSurface(hit.triangle, normalMatrix);
   s.position = instancePoint(r.toWorldX, r.toWorldY, r.toWorldZ, s.position);
-  s.material = r.material >= 0 ? r.material : s.material;
   s.mesh = r.mesh >= 0 ? r.mesh : s.mesh;
   return s;
 }

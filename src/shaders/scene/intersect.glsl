@@ -102,9 +102,10 @@ Hit intersectScene(vec3 origin, vec3 direction) {
     hit.normal = s.shadingNormal;
     hit.geometricNormal = s.geometricNormal;
     hit.scale = 0.0;
-    hit.material = s.material;
+    MeshRecord mesh = loadMesh(s.mesh);
+    hit.material = mesh.materialBase + s.localMaterial;
 #if HAS_EMISSIVE_MESHES
-    hit.emitterPdf = loadMesh(s.mesh).areaPdf;
+    hit.emitterPdf = mesh.areaPdf;
 #else
     hit.emitterPdf = 0.0;
 #endif

@@ -19,6 +19,6 @@ void main() {
     outValue = vec4(float(hit.triangle), hit.t, hit.barycentric);
   } else {
     BvhSurface s = bvhSurface(hit);
-    outValue = vec4(s.shadingNormal, float(s.material));
+    outValue = vec4(s.shadingNormal, float(s.localMaterial));
   }
 }
