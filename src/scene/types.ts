@@ -122,4 +122,15 @@ export interface TriangleMesh {
   positions: Float32Array;
   normals: Float32Array | null;
   indices: Uint32Array;
+  /**
+   * Texture coordinates, 2 floats (u, v) per vertex, of the file's first set
+   * (OBJ `vt` with v turned over, `v' = 1 - v`; PLY `u v`, `s t` or
+   * `texture_u texture_v` as stored; glTF `TEXCOORD_0` as stored); null when
+   * the file does not give coordinates for every vertex. Untouched by
+   * transforms. (0, 0) is an image's top-left corner. The mesh decoders
+   * always set it; absent (meshes built in code) means null.
+   */
+  uvs?: Float32Array | null;
+  /** glTF `TEXCOORD_1`, 2 floats per vertex, when every primitive has it; null otherwise (and for other formats); absent means null. */
+  uvs1?: Float32Array | null;
 }

@@ -1,6 +1,6 @@
 /**
- * The checks every mesh decoder ends with: finite vertices and normals,
- * indices in range, degenerate (zero-area) triangles dropped, at least one
+ * The checks every mesh decoder ends with: finite vertices, normals and
+ * texture coordinates (one per vertex), indices in range, degenerate (zero-area) triangles dropped, at least one
  * triangle left. Decoders build raw arrays; this turns them into a
  * TriangleMesh or throws an AssetError saying what is wrong.
  */
@@ -12,6 +12,10 @@ export interface RawMesh {
   /** 3 per vertex, or null when the file does not give a normal for every corner. */
   normals: ArrayLike<number> | null;
   indices: ArrayLike<number>;
+  /** 2 per vertex (u, v), the file's first set; null or absent when the file does not give one for every vertex. */
+  uvs?: ArrayLike<number> | null;
+  /** 2 per vertex, a second set (glTF TEXCOORD_1); null or absent when there is none. */
+  uvs1?: ArrayLike<number> | null;
 }
 
 export function finalizeMesh(raw: RawMesh): TriangleMesh {
@@ -21,6 +25,9 @@ export function finalizeMesh(raw: RawMesh): TriangleMesh {
     if (!Number.isFinite(positions[i])) throw new AssetError(`vertex ${Math.floor(i / 3)} has a non-finite coordinate (${raw.positions[i]})`);
   }
   const normals = raw.normals ? normalizedNormals(raw.normals, vertexCount) : null;
+  // Vertices are never reindexed here (triangles are only dropped), so per-vertex arrays stay aligned.
+  const uvs = raw.uvs ? checkedUvs(raw.uvs, vertexCount, 'texture coordinate') : null;
+  const uvs1 = raw.uvs1 ? checkedUvs(raw.uvs1, vertexCount, 'second texture coordinate (TEXCOORD_1)') : null;
   if (raw.indices.length % 3 !== 0) throw new AssetError(`the index count ${raw.indices.length} is not a multiple of 3`);
   const kept = new Uint32Array(raw.indices.length);
   let keptCount = 0;
@@ -40,7 +47,17 @@ export function finalizeMesh(raw: RawMesh): TriangleMesh {
   }
   if (raw.indices.length === 0) throw new AssetError('the file has no triangles');
   if (keptCount === 0) throw new AssetError('every triangle of the file has zero area');
-  return { positions, normals, indices: kept.slice(0, keptCount) };
+  return { positions, normals, indices: kept.slice(0, keptCount), uvs, uvs1 };
+}
+
+/** 2 finite floats per vertex, exactly one pair per vertex. */
+function checkedUvs(source: ArrayLike<number>, vertexCount: number, what: string): Float32Array {
+  if (source.length !== vertexCount * 2) throw new AssetError(`the file gives ${source.length / 2} ${what} pairs for ${vertexCount} vertices`);
+  const uvs = Float32Array.from(source);
+  for (let i = 0; i < uvs.length; i++) {
+    if (!Number.isFinite(uvs[i])) throw new AssetError(`vertex ${Math.floor(i / 2)} has a non-finite ${what} (${source[i]})`);
+  }
+  return uvs;
 }
 
 /** Unit normals; a zero normal stays zero (the shader then falls back to the face normal). */

@@ -3,7 +3,9 @@
  * glTF-Transform: every triangle primitive (TRIANGLES, TRIANGLE_STRIP,
  * TRIANGLE_FAN) of the default scene (else the first), with its node's world
  * transform applied, merged into one mesh. Smooth when every primitive has
- * NORMAL. Materials, textures, skins and morph targets are ignored.
+ * NORMAL; texture coordinates TEXCOORD_0 (and TEXCOORD_1) as stored when
+ * every primitive has them (normalized integer accessors de-quantized).
+ * Materials, textures, skins and morph targets are ignored.
  *
  * A `.gltf` may name external buffers (`"uri": "mesh.bin"`): they are read
  * through `resolveResource` (the CLI resolves them relative to the file);
@@ -122,12 +124,31 @@ function collectTriangles(document: Document): TriangleMesh {
     }
   });
   if (primitives.length === 0) throw new AssetError('the file has no triangles (no triangle primitive in its scene)');
-  const smooth = primitives.every(({ primitive }) => primitive.getAttribute('NORMAL') !== null);
+  const every = (semantic: string) => primitives.every(({ primitive }) => primitive.getAttribute(semantic) !== null);
+  const smooth = every('NORMAL');
   const positions: number[] = [];
   const normals: number[] | null = smooth ? [] : null;
+  const uvs: number[] | null = every('TEXCOORD_0') ? [] : null;
+  const uvs1: number[] | null = every('TEXCOORD_1') ? [] : null;
   const indices: number[] = [];
-  for (const { primitive, matrix } of primitives) appendPrimitive(primitive, matrix, positions, normals, indices);
-  return finalizeMesh({ positions, normals, indices });
+  for (const { primitive, matrix } of primitives) {
+    appendPrimitive(primitive, matrix, positions, normals, indices);
+    if (uvs) appendVec2s(primitive, 'TEXCOORD_0', uvs);
+    if (uvs1) appendVec2s(primitive, 'TEXCOORD_1', uvs1);
+  }
+  return finalizeMesh({ positions, normals, indices, uvs, uvs1 });
+}
+
+/** A primitive's texture coordinates as stored (normalized integers de-quantized), one pair per vertex of its POSITION. */
+function appendVec2s(primitive: Primitive, semantic: string, out: number[]): void {
+  const accessor = primitive.getAttribute(semantic)!;
+  const count = primitive.getAttribute('POSITION')!.getCount();
+  if (accessor.getCount() !== count) throw new AssetError(`a glTF primitive has ${accessor.getCount()} ${semantic} for ${count} vertices`);
+  const element = [0, 0];
+  for (let i = 0; i < count; i++) {
+    accessor.getElement(i, element); // de-quantizes normalized integer data
+    out.push(element[0], element[1]);
+  }
 }
 
 function appendPrimitive(primitive: Primitive, matrix: Mat4, positions: number[], normals: number[] | null, indices: number[]): void {

@@ -1,8 +1,10 @@
 /**
  * Stanford PLY: ASCII, binary little- and big-endian. Reads the `vertex`
  * element (x y z, and nx ny nz when all three are present: the mesh is then
- * smooth) and the `face` element (a list property `vertex_indices` or
- * `vertex_index`, any polygon, fan-triangulated); other elements and
+ * smooth; texture coordinates as stored from `u v`, else `s t`, else
+ * `texture_u texture_v`, of any numeric type) and the `face` element (a
+ * list property `vertex_indices` or `vertex_index`, any polygon,
+ * fan-triangulated); other elements and
  * properties are read past. A header that promises more data than the file
  * holds is an error.
  */
@@ -41,15 +43,16 @@ export function decodePly(bytes: Uint8Array): TriangleMesh {
   const read = header.format === 'ascii' ? asciiReader(bytes, header.dataStart) : binaryReader(bytes, header.dataStart, header.format === 'binary_little_endian');
   const positions: number[] = [];
   let normals: number[] | null = null;
+  let uvs: number[] | null = null;
   const indices: number[] = [];
   for (const element of header.elements) {
-    if (element.name === 'vertex') normals = readVertices(element, read, positions);
+    if (element.name === 'vertex') ({ normals, uvs } = readVertices(element, read, positions));
     else if (element.name === 'face') readFaces(element, read, indices);
     else skipElement(element, read);
   }
   if (!header.elements.some((e) => e.name === 'vertex')) throw new AssetError('the PLY header declares no vertex element');
   if (!header.elements.some((e) => e.name === 'face')) throw new AssetError('the file has no triangles (no face element)');
-  return finalizeMesh({ positions, normals, indices });
+  return finalizeMesh({ positions, normals, indices, uvs });
 }
 
 function parseHeader(bytes: Uint8Array): Header {
@@ -125,14 +128,19 @@ function binaryReader(bytes: Uint8Array, start: number, little: boolean): Reader
   };
 }
 
-/** Appends x y z per vertex to `positions`; returns the normals when nx ny nz are all present. */
-function readVertices(element: Element, read: Reader, positions: number[]): number[] | null {
+/** The spellings of texture coordinates, in the order they are looked for. */
+const UV_NAMES = [['u', 'v'], ['s', 't'], ['texture_u', 'texture_v']] as const;
+
+/** Appends x y z per vertex to `positions`; returns the normals when nx ny nz are all present, the coordinates when a pair of UV_NAMES is. */
+function readVertices(element: Element, read: Reader, positions: number[]): { normals: number[] | null; uvs: number[] | null } {
   const names = element.properties.map((p) => p.name);
   const slot = (name: string) => names.indexOf(name);
   const xyz = ['x', 'y', 'z'].map(slot);
   if (xyz.some((i) => i < 0)) throw new AssetError('the PLY vertex element lacks x, y or z');
   const nxyz = ['nx', 'ny', 'nz'].map(slot);
   const normals = nxyz.every((i) => i >= 0) ? [] as number[] : null;
+  const uv = UV_NAMES.map((pair) => pair.map(slot)).find((pair) => pair.every((i) => i >= 0)) ?? null;
+  const uvs = uv ? [] as number[] : null;
   const values = new Array<number>(names.length).fill(0);
   for (let v = 0; v < element.count; v++) {
     element.properties.forEach((p, i) => {
@@ -140,8 +148,9 @@ function readVertices(element: Element, read: Reader, positions: number[]): numb
     });
     positions.push(values[xyz[0]], values[xyz[1]], values[xyz[2]]);
     normals?.push(values[nxyz[0]], values[nxyz[1]], values[nxyz[2]]);
+    if (uv) uvs?.push(values[uv[0]], values[uv[1]]);
   }
-  return normals;
+  return { normals, uvs };
 }
 
 function readFaces(element: Element, read: Reader, indices: number[]): void {

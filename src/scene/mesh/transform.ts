@@ -107,7 +107,7 @@ export function applyMatrix(m: Mat4, positions: ArrayLike<number>, normals: Arra
   return { positions: outP, normals: outN, mirrored: det < 0 };
 }
 
-/** A world-space copy of `mesh` (object to world per the scene format). */
+/** A world-space copy of `mesh` (object to world per the scene format); texture coordinates are kept as they are (shared, not copied). */
 export function transformMesh(mesh: TriangleMesh, transform: MeshTransform): TriangleMesh {
   const world = applyMatrix(meshToWorldMatrix(transform), mesh.positions, mesh.normals);
   let indices = mesh.indices;
@@ -115,5 +115,5 @@ export function transformMesh(mesh: TriangleMesh, transform: MeshTransform): Tri
     indices = mesh.indices.slice();
     for (let t = 0; t < indices.length; t += 3) [indices[t + 1], indices[t + 2]] = [indices[t + 2], indices[t + 1]];
   }
-  return { positions: Float32Array.from(world.positions), normals: world.normals ? Float32Array.from(world.normals) : null, indices };
+  return { positions: Float32Array.from(world.positions), normals: world.normals ? Float32Array.from(world.normals) : null, indices, uvs: mesh.uvs ?? null, uvs1: mesh.uvs1 ?? null };
 }
