@@ -14,6 +14,7 @@ import kernelFrag from '../shaders/test/environment_kernels.frag?raw';
 import { Program } from '../render/gl/program';
 import { FloatTarget } from '../render/gl/targets';
 import { createContext } from '../render/gl/context';
+import { ENVIRONMENT_UNITS } from '../render/gl/textureUnits';
 import { EnvironmentTextures } from '../render/environmentTextures';
 import { buildEnvironmentDistribution } from '../scene/envmap/distribution';
 
@@ -33,7 +34,7 @@ export interface EnvironmentKernelRequest {
   seed?: number;
 }
 
-const UNITS = { map: 0, marginal: 1, conditional: 2 };
+const UNITS = ENVIRONMENT_UNITS;
 let context: { gl: WebGL2RenderingContext; program: Program } | null = null;
 
 function kernelContext() {
