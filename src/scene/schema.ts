@@ -12,6 +12,7 @@ import { hexToLinear, isHexColor } from './color';
 import { MAX_BOUNCES, MAX_IMAGE_SIZE, MAX_LIGHTS, MAX_MESHES, MAX_SCENE_BYTES, MAX_SPHERES, MAX_IOR, MIN_IOR } from './limits';
 import type { Camera, Emission, Environment, Ground, Light, Material, Mesh, Scene, Sphere, Vec3 } from './types';
 import { versionIssues } from './version';
+import { SceneError, type SafeParseResult, type SceneIssue } from './issues';
 
 /** Largest magnitude of a coordinate, a radius, a ground height or an aperture. */
 export const MAX_COORDINATE = 1e6;
@@ -27,29 +28,7 @@ export const MIN_CAMERA_LENGTH = 1e-6;
 /** At most this many issues are reported; one more issue at the root counts the rest. */
 export const MAX_REPORTED_ISSUES = 100;
 
-/** One problem in a scene. `path` is like "spheres[2].material.roughness"; "" is the document root. */
-export interface SceneIssue {
-  path: string;
-  message: string;
-}
-
-/** The only error the parse functions throw. `message` lists the issues, one "path: message" per line. */
-export class SceneError extends Error {
-  readonly issues: SceneIssue[];
-
-  constructor(issues: SceneIssue[]) {
-    super(issues.map(formatIssue).join('\n'));
-    this.name = 'SceneError';
-    this.issues = issues;
-  }
-}
-
-/** "path: message", with "scene" standing for the root. */
-export function formatIssue(issue: SceneIssue): string {
-  return `${issue.path === '' ? 'scene' : issue.path}: ${issue.message}`;
-}
-
-export type SafeParseResult = { ok: true; scene: Scene } | { ok: false; issues: SceneIssue[] };
+export { SceneError, formatIssue, type SceneIssue, type SafeParseResult } from './issues';
 
 // ---------------------------------------------------------------- the schema
 

@@ -4,7 +4,7 @@
  * finds those keys in a document that does not (one issue per key, naming
  * its path); `requiredVersion` is the version a normalized scene needs.
  */
-import type { SceneIssue } from './schema';
+import type { SceneIssue } from './issues';
 import type { Material, Scene } from './types';
 
 const V2_MATERIAL_KEYS = ['type', 'emission', 'ior'];
