@@ -1,0 +1,34 @@
+/**
+ * The kernels runKernel (./kernels.ts) runs and the request it takes, apart
+ * from the kernels themselves: ./guideKernels.ts reads the same request, and
+ * ./kernels.ts dispatches to it, so neither imports the other's module for
+ * the shapes.
+ */
+export const KERNELS = ['sampleCone', 'sampleMaterial', 'pdfMaterial'] as const;
+
+/** guideSetup: pixel 0 = (local cone axis, 1 - cos half angle), others = guide probability. */
+export const GUIDE_KERNELS = ['guideSetup', 'sampleGuided', 'weightGuided', 'weightBsdf', 'pdfGuided', 'pdfCap'] as const;
+export type GuideKernelName = (typeof GUIDE_KERNELS)[number];
+
+export type KernelName = (typeof KERNELS)[number] | GuideKernelName;
+
+export interface KernelRequest {
+  kernel: KernelName;
+  width: number;
+  height: number;
+  /** Kernel parameters: cone: [oneMinusCosMax]; material: [roughness, ior, type (0 standard, 1 dielectric)]. */
+  params: number[];
+  /** Outgoing direction (local frame) for the material kernels. */
+  wo?: [number, number, number];
+  seed?: number;
+  /** Guide kernels (./guideKernels.ts): the vertex, its normal, and the guide's mirror and light (centre, radius each). */
+  point?: [number, number, number];
+  normal?: [number, number, number];
+  guide?: number[];
+  /** pdfCap: the cap's axis (local frame) and half angle in radians. */
+  cap?: [number, number, number, number];
+}
+
+export function isGuideKernel(name: string): name is GuideKernelName {
+  return (GUIDE_KERNELS as readonly string[]).includes(name);
+}
