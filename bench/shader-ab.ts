@@ -47,30 +47,10 @@ const PATCHES: Record<string, [string | RegExp, string][]> = {
   // Scene fetch cost: sphere geometry from arithmetic instead of the scene data (wrong image).
   fakeFetch: [[/vec4 sphereGeometry\(int i\) \{[^\n]*\}/,
     'vec4 sphereGeometry(int i) { float f = float(i); return vec4(f - 2.0, 0.5 + 0.1 * f, 0.3 * f, 0.5); }']],
-  // Seed scene only: the loop bounds as compile-time constants (5 spheres, 1 light).
-  constCounts: [
-    ['int sphereCount() { return int(uCounts.x); }', 'int sphereCount() { return 5; }'],
-    ['int lightCount() { return int(uCounts.y); }', 'int lightCount() { return 1; }'],
-  ],
-  // Sphere and light geometry from the uniform block instead of the texture.
-  blockReads: [
-    [/vec4 sphereGeometry\(int i\) \{[^\n]*\}/, 'vec4 sphereGeometry(int i) { return uSpheres[i * SPHERE_VEC4S + SPHERE_GEOMETRY]; }'],
-    [/vec4 lightGeometry\(int i\) \{[^\n]*\}/, 'vec4 lightGeometry(int i) { return uLights[i * LIGHT_VEC4S + LIGHT_GEOMETRY]; }'],
-  ],
   // Caustic guiding compiled out (as for a scene without guides).
   noGuide: [['#if CAUSTIC_GUIDES > 0', '#if 0']],
-  // MIS weight at light hits replaced by 1 (wrong image; cost share).
-  noEmittedPdf: [['powerHeuristic(previousPdf, lightPdf(previousPosition, hit.geometry))', '1.0']],
   // Caustic guide without the fixed-point step towards the reflection point.
   noGuideStep: [['  h = normalize(normalize(x - p) + normalize(light.xyz - p));\n  p = mirror.xyz + mirror.w * h;\n', '']],
-  // Meshes: shadow rays ignore them (wrong image; cost share of any-hit traversal).
-  noMeshShadow: [['blocked = blocked || bvhAnyHit(origin, direction, tMax);', '']],
-  // Meshes: shadow rays traverse the BVH with tMax 0 (one step: the cost of a call, not of its work).
-  meshShadowOneStep: [['blocked = blocked || bvhAnyHit(origin, direction, tMax);', 'blocked = blocked || bvhAnyHit(origin, direction, 0.0);']],
-  // Meshes: every closest-hit traversal done twice (both results used): the extra time is what they cost in place.
-  doubleClosest: [['  if (bvhClosestHit(origin, direction, hit.t, triangle)) {', '  BvhHit twice;\n  bool again = bvhClosestHit(origin, direction, hit.t, twice);\n  bool once = bvhClosestHit(origin, direction, hit.t, triangle);\n  triangle.t = max(triangle.t, twice.t);\n  if (once && again) {']],
-  // Meshes: no closest-hit traversal either (wrong image: the meshes vanish).
-  noMeshHit: [['if (bvhClosestHit(origin, direction, hit.t, triangle)) {', 'if (false) {']],
   // The camera: a fixed direction per pixel.
   noCamera: [[/void generateCameraRay\(vec2 pixel, out vec3 origin, out vec3 direction\) \{/,
     'void generateCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) { origin = uCameraPosition; direction = normalize(vec3(pixel / uResolution - 0.5, -1.0)); return; }\nvoid unusedCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) {']],

@@ -20,8 +20,9 @@ import type { Scene, TriangleMesh } from '../scene/types';
 /**
  * Total triangles above which the BVH is built in the worker: every mesh.
  * Measured in Node on this (shared, loaded) machine: 180-360 ms for the
- * 3674-triangle bunny, 14 s for 1M triangles (bench/bvh-build.ts), so even
- * the bunny would stall a drag if built on the page's thread.
+ * 3674-triangle bunny, 14 s for 1M triangles (bench/bvh-build.ts, removed
+ * after 4bf13d0), so even the bunny would stall a drag if built on the
+ * page's thread.
  */
 export const ASYNC_BUILD_TRIANGLES = 0;
 

@@ -5,14 +5,13 @@
  */
 import bvhGlsl from '../shaders/scene/bvh.glsl?raw';
 import kernelFrag from '../shaders/test/bvh_kernels.frag?raw';
-import fullscreenVert from '../shaders/fullscreen.vert?raw';
-import { Program } from '../render/gl/program';
-import { FloatTarget } from '../render/gl/targets';
-import { createContext } from '../render/gl/context';
-import { BvhTextures, bvhDefines, uploadFloatTextureArray } from '../render/bvhTextures';
+import { TEXTURE_UNITS } from '../render/gl/textureUnits';
+import { BvhTextures, bvhDefines } from '../render/bvhTextures';
+import { createDataTextureArray } from '../render/gl/dataTexture';
 import { bvhTexture, type LayeredTextureData, type PackedBvh } from '../render/bvh/pack';
 import { buildBvhAsync } from '../render/bvh/buildAsync';
 import { decodeMesh } from '../scene/mesh';
+import { kernelProgram, runFullScreen } from './kernelHarness';
 
 export interface BvhTraceRequest {
   /** base64 of the packed texture data; empty = the BVH last built by buildInWorker (large meshes). */
@@ -50,61 +49,44 @@ function asTexture(base64: string): LayeredTextureData {
   texture.data.set(data);
   return texture;
 }
-let gl: WebGL2RenderingContext | null = null;
-const programs = new Map<string, Program>();
 
-/** The context, and the kernel program for a text of bvh.glsl (default: the built one). */
-function kernelContext(source = bvhGlsl) {
-  if (!gl) {
-    gl = createContext(new OffscreenCanvas(1, 1), false);
-    gl.bindVertexArray(gl.createVertexArray());
-  }
-  let program = programs.get(source);
-  if (!program) {
-    program = new Program(
-      gl,
-      [{ name: 'fullscreen.vert', source: fullscreenVert }],
-      [{ name: 'scene/bvh.glsl', source }, { name: 'test/bvh_kernels.frag', source: kernelFrag }],
-      { ...bvhDefines(), HAS_MESHES: 1 },
-    );
-    programs.set(source, program);
-  }
-  return { gl, program };
+/** The kernel program for a text of bvh.glsl (default: the built one). */
+function bvhProgram(source = bvhGlsl) {
+  return kernelProgram(`test/bvh_kernels.frag\n${source}`, () => ({
+    fragment: [{ name: 'scene/bvh.glsl', source }, { name: 'test/bvh_kernels.frag', source: kernelFrag }],
+    defines: { ...bvhDefines(), HAS_MESHES: 1 },
+  }));
 }
 
 /** Traces the request's rays; returns RGBA float32 per ray (closest: triangle, t, b1, b2; any: hit; surface: shading normal, material). */
 export function traceBvh(request: BvhTraceRequest): string {
-  const { gl, program } = kernelContext(request.bvhSource);
+  const kernel = bvhProgram(request.bvhSource);
+  const { gl } = kernel;
   const packed = request.texture === '' && lastBuilt ? lastBuilt : ({ texture: asTexture(request.texture) } as PackedBvh);
   const rayCount = fromBase64(request.rays).length / 8;
   const rows = Math.ceil(rayCount / request.width);
   const textures = new BvhTextures(gl, packed);
-  const rays = uploadFloatTextureArray(gl, asTexture(request.rays));
-  const target = new FloatTarget(gl, request.width, rows);
+  const rayData = asTexture(request.rays);
+  const rays = createDataTextureArray(gl, rayData.width, rayData.height, rayData.layers, rayData.data);
   try {
-    program.use();
-    textures.bind(program, 0);
-    gl.activeTexture(gl.TEXTURE2);
-    gl.bindTexture(gl.TEXTURE_2D_ARRAY, rays);
-    program.setUniforms({ uRays: 2, uMode: MODES[request.mode], uGridWidth: request.width }, { uRays: 'int', uMode: 'int', uGridWidth: 'int' });
-    gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
-    gl.viewport(0, 0, request.width, rows);
-    gl.drawArrays(gl.TRIANGLES, 0, 3);
-    if (request.timedDraws) {
-      target.read(); // waits for the first draw (compile, upload)
-      const start = performance.now();
-      for (let i = 0; i < request.timedDraws; i++) {
-        gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer); // read() unbinds it
-        gl.drawArrays(gl.TRIANGLES, 0, 3);
-        target.read(); // one draw at a time, finished
-      }
-      return String((performance.now() - start) / request.timedDraws);
-    }
-    const error = gl.getError();
-    if (error !== gl.NO_ERROR) throw new Error(`bvh kernel: WebGL error 0x${error.toString(16)}`);
-    return toBase64(target.read().subarray(0, rayCount * 4));
+    const result = runFullScreen(
+      kernel,
+      { uRays: TEXTURE_UNITS.kernelRays, uMode: MODES[request.mode], uGridWidth: request.width },
+      { uRays: 'int', uMode: 'int', uGridWidth: 'int' },
+      request.width,
+      rows,
+      {
+        label: 'bvh kernel',
+        bind: (program) => {
+          textures.bind(program, TEXTURE_UNITS.bvh);
+          gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNITS.kernelRays);
+          gl.bindTexture(gl.TEXTURE_2D_ARRAY, rays);
+        },
+        timedDraws: request.timedDraws,
+      },
+    );
+    return typeof result === 'number' ? String(result) : toBase64(result.subarray(0, rayCount * 4));
   } finally {
-    target.dispose();
     textures.dispose();
     gl.deleteTexture(rays);
   }

@@ -6,16 +6,14 @@
  * mapping against the format's formula, the lookup against TypeScript).
  * Registers `window.pathtraceEnvironmentKernels` on the headless page.
  */
-import fullscreenVert from '../shaders/fullscreen.vert?raw';
 import mathGlsl from '../shaders/common/math.glsl?raw';
 import rngGlsl from '../shaders/common/rng.glsl?raw';
 import environmentGlsl from '../shaders/lights/environment_map.glsl?raw';
 import kernelFrag from '../shaders/test/environment_kernels.frag?raw';
-import { Program } from '../render/gl/program';
-import { FloatTarget } from '../render/gl/targets';
-import { createContext } from '../render/gl/context';
+import { ENVIRONMENT_UNITS } from '../render/gl/textureUnits';
 import { EnvironmentTextures } from '../render/environmentTextures';
 import { buildEnvironmentDistribution } from '../scene/envmap/distribution';
+import { kernelProgram, runFullScreen } from './kernelHarness';
 
 export const ENVIRONMENT_KERNELS = ['sample', 'samplePdfs', 'pdfSphereGrid', 'pdfUvGrid', 'randomDirection', 'randomRadiance', 'radianceAt'] as const;
 export type EnvironmentKernelName = (typeof ENVIRONMENT_KERNELS)[number];
@@ -33,12 +31,10 @@ export interface EnvironmentKernelRequest {
   seed?: number;
 }
 
-const UNITS = { map: 0, marginal: 1, conditional: 2 };
-let context: { gl: WebGL2RenderingContext; program: Program } | null = null;
+const UNITS = ENVIRONMENT_UNITS;
 
-function kernelContext() {
-  if (!context) {
-    const gl = createContext(new OffscreenCanvas(1, 1), false);
+function environmentProgram() {
+  return kernelProgram('test/environment_kernels.frag', () => {
     const defines = { LOW_DISCREPANCY: 0, HAS_ENV_MAP: 1, ...Object.fromEntries(ENVIRONMENT_KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i])) };
     const chunks = [
       { name: 'common/math.glsl', source: mathGlsl },
@@ -46,36 +42,32 @@ function kernelContext() {
       { name: 'lights/environment_map.glsl', source: environmentGlsl },
       { name: 'test/environment_kernels.frag', source: kernelFrag },
     ];
-    const program = new Program(gl, [{ name: 'fullscreen.vert', source: fullscreenVert }], chunks, defines);
-    gl.bindVertexArray(gl.createVertexArray());
-    context = { gl, program };
-  }
-  return context;
+    return { fragment: chunks, defines };
+  });
 }
 
 /** Runs a kernel; RGBA float32, rows bottom to top (pixel index = y * width + x). */
 export function runEnvironmentKernel(request: EnvironmentKernelRequest): Float32Array {
-  const { gl, program } = kernelContext();
+  const kernel = environmentProgram();
   const image = { width: request.map.width, height: request.map.height, rgb: new Float32Array(request.map.rgb) };
-  const textures = new EnvironmentTextures(gl, image, buildEnvironmentDistribution(image));
-  const target = new FloatTarget(gl, request.width, request.height);
+  const textures = new EnvironmentTextures(kernel.gl, image, buildEnvironmentDistribution(image));
   try {
-    program.use();
-    textures.bind(UNITS);
-    textures.setUniforms(program, UNITS, request.rotation, request.intensity);
     const params = [0, 0, 0, 0].map((v, i) => request.params?.[i] ?? v);
-    program.setUniforms(
+    return runFullScreen(
+      kernel,
       { uKernel: ENVIRONMENT_KERNELS.indexOf(request.kernel), uParams: params, uGrid: [request.width, request.height], uSeed: request.seed ?? 1 },
       { uKernel: 'int', uParams: 'vec4', uGrid: 'vec2', uSeed: 'uint' },
+      request.width,
+      request.height,
+      {
+        label: `environment kernel ${request.kernel}`,
+        bind: (program) => {
+          textures.bind(UNITS);
+          textures.setUniforms(program, UNITS, request.rotation, request.intensity);
+        },
+      },
     );
-    gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
-    gl.viewport(0, 0, request.width, request.height);
-    gl.drawArrays(gl.TRIANGLES, 0, 3);
-    const error = gl.getError();
-    if (error !== gl.NO_ERROR) throw new Error(`environment kernel ${request.kernel}: WebGL error 0x${error.toString(16)}`);
-    return target.read();
   } finally {
-    target.dispose();
     textures.dispose();
   }
 }

@@ -5,7 +5,8 @@
  * (compiled with `bvhDefines()`).
  */
 import type { Program } from './gl/program';
-import { BVH_LAYER_ROWS, BVH_ROOT_NODE, BVH_ROW_TRIANGLES, BVH_TEXTURE_WIDTH, type LayeredTextureData, type PackedBvh, type TextureData } from './bvh/pack';
+import { createDataTextureArray } from './gl/dataTexture';
+import { BVH_LAYER_ROWS, BVH_ROOT_NODE, BVH_ROW_TRIANGLES, BVH_TEXTURE_WIDTH, type PackedBvh } from './bvh/pack';
 import { MAX_BVH_DEPTH } from './bvh/build';
 
 /** The #defines bvh.glsl expects (its defaults equal these; pass them to keep TS and GLSL in one place). */
@@ -26,7 +27,8 @@ export class BvhTextures {
     private readonly gl: WebGL2RenderingContext,
     packed: PackedBvh,
   ) {
-    this.texture = uploadFloatTextureArray(gl, packed.texture);
+    const { width, height, layers, data } = packed.texture;
+    this.texture = createDataTextureArray(gl, width, height, layers, data);
   }
 
   /** Binds the texture to the given unit and points the program's sampler at it (the program must be in use). */
@@ -41,31 +43,4 @@ export class BvhTextures {
   dispose(): void {
     this.gl.deleteTexture(this.texture);
   }
-}
-
-/**
- * An RGBA32F 2D texture of `data` (BVH_TEXTURE_WIDTH wide for bvhTexel's
- * sampler2D overload), nearest filtering (read with texelFetch).
- */
-export function uploadFloatTexture(gl: WebGL2RenderingContext, data: TextureData): WebGLTexture {
-  const texture = gl.createTexture()!;
-  gl.bindTexture(gl.TEXTURE_2D, texture);
-  gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, data.width, data.height);
-  gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, data.width, data.height, gl.RGBA, gl.FLOAT, data.data);
-  // RGBA32F is not filterable in WebGL2: every read is a texelFetch.
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-  return texture;
-}
-
-/** An RGBA32F 2D array texture of `data`, nearest filtering (read with texelFetch). */
-export function uploadFloatTextureArray(gl: WebGL2RenderingContext, data: LayeredTextureData): WebGLTexture {
-  const texture = gl.createTexture()!;
-  gl.bindTexture(gl.TEXTURE_2D_ARRAY, texture);
-  gl.texStorage3D(gl.TEXTURE_2D_ARRAY, 1, gl.RGBA32F, data.width, data.height, data.layers);
-  gl.texSubImage3D(gl.TEXTURE_2D_ARRAY, 0, 0, 0, 0, data.width, data.height, data.layers, gl.RGBA, gl.FLOAT, data.data);
-  // RGBA32F is not filterable in WebGL2: every read is a texelFetch.
-  gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-  gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-  return texture;
 }

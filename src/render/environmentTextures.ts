@@ -8,6 +8,7 @@
 import type { EnvironmentImage } from '../scene/types';
 import type { EnvironmentDistribution } from '../scene/envmap/distribution';
 import type { Program } from './gl/program';
+import { createDataTexture } from './gl/dataTexture';
 
 /** GLSL types of the uniforms, in the form Program.setUniforms takes. */
 export const ENVIRONMENT_UNIFORM_TYPES: Record<string, string> = {
@@ -32,26 +33,6 @@ export class EnvironmentTextureSizeError extends Error {
   }
 }
 
-function createFloatTexture(
-  gl: WebGL2RenderingContext,
-  internalFormat: number,
-  format: number,
-  width: number,
-  height: number,
-  data: Float32Array,
-): WebGLTexture {
-  const texture = gl.createTexture()!;
-  gl.bindTexture(gl.TEXTURE_2D, texture);
-  gl.texStorage2D(gl.TEXTURE_2D, 1, internalFormat, width, height);
-  // Rows of 12 or 16 bytes: already 4-byte aligned.
-  gl.pixelStorei(gl.UNPACK_ALIGNMENT, 4);
-  gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, format, gl.FLOAT, data);
-  // Float textures are not filterable in WebGL2: the shader reads with texelFetch only.
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-  return texture;
-}
-
 export class EnvironmentTextures {
   private readonly textures: { map: WebGLTexture; marginal: WebGLTexture; conditional: WebGLTexture };
 
@@ -69,9 +50,9 @@ export class EnvironmentTextures {
     check('distribution', distribution.width, distribution.rows);
     if (image.rgb.length !== image.width * image.height * 3) throw new Error('environment image: rgb has the wrong length');
     this.textures = {
-      map: createFloatTexture(gl, gl.RGB32F, gl.RGB, image.width, image.height, image.rgb),
-      marginal: createFloatTexture(gl, gl.RGBA32F, gl.RGBA, distribution.rows, 1, distribution.marginal),
-      conditional: createFloatTexture(gl, gl.RGBA32F, gl.RGBA, distribution.width, distribution.rows, distribution.conditional),
+      map: createDataTexture(gl, image.width, image.height, image.rgb, 'rgb32f'),
+      marginal: createDataTexture(gl, distribution.rows, 1, distribution.marginal),
+      conditional: createDataTexture(gl, distribution.width, distribution.rows, distribution.conditional),
     };
   }
 

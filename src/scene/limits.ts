@@ -1,6 +1,6 @@
 /**
  * Limits of the scene model. They are validated by the schema and injected
- * into the shaders as #defines (see src/render/layout/), so they live here once.
+ * into the shaders as #defines (see src/render/layout/scene.ts), so they live here once.
  */
 /**
  * Spheres and lights in one scene. Each has records in the scene tables

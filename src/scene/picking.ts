@@ -5,7 +5,7 @@
  * exactly what is drawn under the cursor. Pure: no DOM, no GL.
  */
 import { cameraFrame, cameraRay, type Ray } from './camera';
-import { meshToWorldMatrix } from './mesh/transform';
+import { inverseAffine, meshToWorldMatrix } from './mesh/transform';
 import type { Camera, Mesh, Scene, TriangleMesh, Vec3 } from './types';
 
 export type ObjectKind = 'sphere' | 'light' | 'mesh';
@@ -147,7 +147,7 @@ export function meshBounds(data: TriangleMesh): { min: Vec3; max: Vec3 } {
  * triangle (Moller-Trumbore): a click is rare, so no BVH is kept here.
  */
 export function intersectMesh(ray: Ray, mesh: Mesh, data: TriangleMesh): number | null {
-  const inverse = invertAffine(meshToWorldMatrix(mesh));
+  const inverse = inverseAffine(meshToWorldMatrix(mesh));
   const o = transformPoint(inverse, ray.origin, 1);
   const d = transformPoint(inverse, ray.direction, 0);
   const { min, max } = meshBounds(data);
@@ -190,25 +190,6 @@ function hitsBox(o: Vec3, d: Vec3, min: Vec3, max: Vec3): boolean {
     exit = Math.min(exit, Math.max(t0, t1));
   }
   return enter <= exit * 1.000001;
-}
-
-/** Inverse of a column-major affine 4x4 (the upper 3x3 by cofactors). */
-function invertAffine(m: Float64Array): Float64Array {
-  const [a, b, c, d, e, f, g, h, i] = [m[0], m[4], m[8], m[1], m[5], m[9], m[2], m[6], m[10]];
-  const A = e * i - f * h, B = f * g - d * i, C = d * h - e * g;
-  const det = a * A + b * B + c * C;
-  const r = [
-    [A, c * h - b * i, b * f - c * e],
-    [B, a * i - c * g, c * d - a * f],
-    [C, b * g - a * h, a * e - b * d],
-  ].map((row) => row.map((x) => x / det));
-  const out = new Float64Array(16);
-  for (let row = 0; row < 3; row++) {
-    for (let col = 0; col < 3; col++) out[col * 4 + row] = r[row][col];
-    out[12 + row] = -(r[row][0] * m[12] + r[row][1] * m[13] + r[row][2] * m[14]);
-  }
-  out[15] = 1;
-  return out;
 }
 
 const transformPoint = (m: Float64Array, v: Vec3, w: 0 | 1): Vec3 => [

@@ -17,6 +17,7 @@ import {
 } from './schemaParts';
 import type { Camera, Environment, Ground, Light, Material, Mesh, Scene, Sphere, Vec3 } from './types';
 import { versionIssues } from './version';
+import { SceneError, type SafeParseResult, type SceneIssue } from './issues';
 
 export { MAX_COORDINATE, MAX_INTENSITY };
 /** Largest explicit `camera.focusDistance` (more than any distance inside the coordinate box). */
@@ -26,29 +27,7 @@ export const MIN_CAMERA_LENGTH = 1e-6;
 /** At most this many issues are reported; one more issue at the root counts the rest. */
 export const MAX_REPORTED_ISSUES = 100;
 
-/** One problem in a scene. `path` is like "spheres[2].material.roughness"; "" is the document root. */
-export interface SceneIssue {
-  path: string;
-  message: string;
-}
-
-/** The only error the parse functions throw. `message` lists the issues, one "path: message" per line. */
-export class SceneError extends Error {
-  readonly issues: SceneIssue[];
-
-  constructor(issues: SceneIssue[]) {
-    super(issues.map(formatIssue).join('\n'));
-    this.name = 'SceneError';
-    this.issues = issues;
-  }
-}
-
-/** "path: message", with "scene" standing for the root. */
-export function formatIssue(issue: SceneIssue): string {
-  return `${issue.path === '' ? 'scene' : issue.path}: ${issue.message}`;
-}
-
-export type SafeParseResult = { ok: true; scene: Scene } | { ok: false; issues: SceneIssue[] };
+export { SceneError, formatIssue, type SceneIssue, type SafeParseResult } from './issues';
 
 // ---------------------------------------------------------------- the schema
 

@@ -7,7 +7,7 @@
  * (src/materials/<kind>/kind.ts).
  */
 import { materialVersion, typeVersion } from '../materials/registry';
-import type { SceneIssue } from './schema';
+import type { SceneIssue } from './issues';
 import type { Scene } from './types';
 
 /** Keys of any material that version 2 brought (`ior`: of its glass, on a material without `type` in version 1). */

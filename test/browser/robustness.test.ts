@@ -196,7 +196,7 @@ describe('nasty but valid scenes render without NaN, Inf, negative or rejected s
   // Regression (found by this file, fixed in 6f13452): the format allows
   // emitted radiance color * intensity up to 1e12 * 1e12 = 1e24, but
   // trace.frag rejected every sample >= MAX_RADIANCE, then 1e20. It is now
-  // 1e30 (src/render/layout.ts); float32 still sums 1e8 such samples.
+  // 1e30 (src/render/sampling.ts); float32 still sums 1e8 such samples.
   it('huge emission at the limit (1e12 * 1e12) is not rejected (MAX_RADIANCE above the largest emission of the format)', async () => {
     const [, json] = NASTY.find(([name]) => name.startsWith('huge emission'))!;
     await session().load(parseScene(json), { ...SIZE, seed: 1 });

@@ -1,4 +1,5 @@
 /** Float render targets: the ping-pong pair that holds the running sums. */
+import { createDataTexture } from './dataTexture';
 
 export class FloatTarget {
   readonly texture: WebGLTexture;
@@ -9,12 +10,8 @@ export class FloatTarget {
     readonly width: number,
     readonly height: number,
   ) {
-    this.texture = gl.createTexture()!;
-    gl.bindTexture(gl.TEXTURE_2D, this.texture);
-    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, width, height);
     // RGBA32F is not filterable in WebGL2: every read is a texelFetch.
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    this.texture = createDataTexture(gl, width, height);
     this.framebuffer = gl.createFramebuffer()!;
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.framebuffer);
     gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, this.texture, 0);

@@ -7,6 +7,7 @@
  */
 import { FloatTarget } from '../gl/targets';
 import { Program } from '../gl/program';
+import { TEXTURE_UNITS } from '../gl/textureUnits';
 import type { SceneFeatures } from '../packScene';
 import type { SamplerKind } from '../sampling';
 import { assembleChunks, featureDefines, sceneDefines } from '../shaderChunks';
@@ -26,9 +27,9 @@ const UNIFORM_TYPES: Record<string, string> = {
   uTileGrid: 'uvec3',
 };
 
-/** Texture units of the sums read (0 and one after the scene's units 1-6). */
-const ALBEDO_UNIT = 0;
-const NORMAL_UNIT = 7;
+/** Texture units of the sums read (after the scene's). */
+const ALBEDO_UNIT = TEXTURE_UNITS.albedoSums;
+const NORMAL_UNIT = TEXTURE_UNITS.normalSums;
 
 /** The guides' running sums, as Float32Arrays in GL's row order (bottom to top). */
 export interface AovSums {
@@ -141,8 +142,10 @@ export class AovPass {
     else gl.drawArrays(gl.TRIANGLES, 0, 3);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     // No sampler keeps pointing at a target the next draw writes.
-    gl.activeTexture(gl.TEXTURE0 + NORMAL_UNIT);
-    gl.bindTexture(gl.TEXTURE_2D, null);
+    for (const unit of [NORMAL_UNIT, ALBEDO_UNIT]) {
+      gl.activeTexture(gl.TEXTURE0 + unit);
+      gl.bindTexture(gl.TEXTURE_2D, null);
+    }
     gl.activeTexture(gl.TEXTURE0);
     if (!tiles) this.commit(samples);
   }

@@ -19,16 +19,13 @@ import { buildAliasTable } from '../aliasTable';
 import { BVH_TEXTURE_WIDTH, MAX_INSTANCES, buildAndPackGroups, groupMeshes, trianglesIn, type BvhMeshInput, type MeshGroups, type PackedBvh } from '../bvh';
 import { INSTANCE } from '../layout/scene';
 import { packRecord } from '../layout/records';
-import { BvhTextures, uploadFloatTexture } from '../bvhTextures';
+import { BvhTextures } from '../bvhTextures';
 import type { MeshEmitterSlots } from '../packScene';
 import { EnvironmentTextures } from '../environmentTextures';
 import type { Program } from '../gl/program';
+import { createDataTexture, uploadDataTexture } from '../gl/dataTexture';
+import { ENVIRONMENT_UNITS, TEXTURE_UNITS } from '../gl/textureUnits';
 
-/** Texture units (0 holds the running sums, 1 the scene data). */
-const ENVIRONMENT_UNITS = { map: 2, marginal: 3, conditional: 4 };
-const BVH_UNIT = 5;
-const EMISSIVE_UNIT = 7;
-const INSTANCE_UNIT = 8;
 
 /** Distributions by image: building one takes tens of milliseconds for a 2k map. */
 const distributions = new WeakMap<EnvironmentImage, EnvironmentDistribution>();
@@ -177,9 +174,9 @@ export class AssetTextures {
   /** Binds the textures to their units for `program` (in use); leaves another unit than 0 active. */
   bind(program: Program): void {
     this.environment?.textures.bind(ENVIRONMENT_UNITS);
-    this.bvh?.textures.bind(program, BVH_UNIT);
-    this.bvh?.emissive.table?.bind(program, EMISSIVE_UNIT);
-    this.bvh?.instances?.bind(program, INSTANCE_UNIT);
+    this.bvh?.textures.bind(program, TEXTURE_UNITS.bvh);
+    this.bvh?.emissive.table?.bind(program, TEXTURE_UNITS.emissiveTriangles);
+    this.bvh?.instances?.bind(program, TEXTURE_UNITS.instances);
   }
 
   dispose(): void {
@@ -270,19 +267,14 @@ class InstanceTable {
   private count = 0;
 
   constructor(private readonly gl: WebGL2RenderingContext, records: Float32Array) {
-    this.texture = gl.createTexture()!;
-    gl.bindTexture(gl.TEXTURE_2D, this.texture);
-    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, MAX_INSTANCES * INSTANCE.texels, 1);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    this.texture = createDataTexture(gl, MAX_INSTANCES * INSTANCE.texels, 1);
     this.update(records);
   }
 
   update(records: Float32Array): void {
     const gl = this.gl;
     this.count = records.length / (INSTANCE.texels * 4);
-    gl.bindTexture(gl.TEXTURE_2D, this.texture);
-    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, records.length / 4, 1, gl.RGBA, gl.FLOAT, records);
+    uploadDataTexture(gl, this.texture, records.length / 4, 1, records);
   }
 
   bind(program: Program, unit: number): void {
@@ -330,7 +322,7 @@ class EmissiveTriangles {
         data[o + 2] = bvhIndex[firstInput[e.mesh] + table.alias[k]];
       }
     }
-    this.texture = uploadFloatTexture(gl, { data, width, height: data.length / 4 / width });
+    this.texture = createDataTexture(gl, width, data.length / 4 / width, data);
   }
 
   bind(program: Program, unit: number): void {

@@ -1,6 +1,7 @@
 /** The display pass: mean radiance -> exposure -> tone map -> sRGB. */
 import displayFrag from '../../shaders/display.frag?raw';
 import { Program } from '../gl/program';
+import { TEXTURE_UNITS } from '../gl/textureUnits';
 import { flipRows } from '../gl/rows';
 import type { FloatTarget } from '../gl/targets';
 import { TONEMAPS, toneMapDefines, type ToneMap } from '../toneMaps';
@@ -42,7 +43,7 @@ export class DisplayPass {
     if (toneMap < 0) throw new Error(`unknown tone map "${options.toneMap}"; use one of ${TONEMAPS.join(', ')}`);
     this.program.use().setUniforms(
       {
-        uAccumulation: 0,
+        uAccumulation: TEXTURE_UNITS.accumulation,
         uInverseSampleCount: sampleCount > 0 ? 1 / sampleCount : 0,
         uExposureScale: 2 ** (options.exposure ?? 0),
         uToneMap: toneMap,
@@ -50,7 +51,7 @@ export class DisplayPass {
       },
       UNIFORM_TYPES,
     );
-    gl.activeTexture(gl.TEXTURE0);
+    gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNITS.accumulation);
     gl.bindTexture(gl.TEXTURE_2D, sums.texture);
     gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
     gl.viewport(0, 0, width, height);

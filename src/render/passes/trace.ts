@@ -2,6 +2,7 @@
 import { type CameraFrame, cameraFrame, inverseViewProjection } from '../../scene/camera';
 import type { Scene } from '../../scene/types';
 import { Program } from '../gl/program';
+import { TEXTURE_UNITS } from '../gl/textureUnits';
 import type { PingPong } from '../gl/targets';
 import { missingAssets, type SceneAssets } from '../../scene/assets';
 import { SceneError } from '../../scene/schema';
@@ -35,8 +36,6 @@ const UNIFORM_TYPES: Record<string, string> = {
 };
 
 const SCENE_BLOCK_BINDING = 0;
-/** Texture unit of the scene data texture (unit 0 holds the running sums). */
-const SCENE_TEXTURE_UNIT = 1;
 
 export class TracePass {
   /**
@@ -138,8 +137,8 @@ export class TracePass {
         uFocusDistance: frame.focusDistance,
         uResolution: [width, height],
         uMaxBounces: scene.render.maxBounces,
-        uAccumulation: 0,
-        uSceneData: SCENE_TEXTURE_UNIT,
+        uAccumulation: TEXTURE_UNITS.accumulation,
+        uSceneData: TEXTURE_UNITS.sceneData,
       },
       UNIFORM_TYPES,
     );
@@ -172,7 +171,7 @@ export class TracePass {
     const gl = this.gl;
     gl.bindBufferBase(gl.UNIFORM_BUFFER, SCENE_BLOCK_BINDING, this.sceneBuffer);
     this.assets.bind(program);
-    gl.activeTexture(gl.TEXTURE0 + SCENE_TEXTURE_UNIT);
+    gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNITS.sceneData);
     gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
     gl.activeTexture(gl.TEXTURE0);
   }

@@ -7,7 +7,7 @@
 // bounce's light and BSDF directions (three 2D dimensions) together follow
 // a Kronecker sequence: coordinate j of sample i is frac(shift_j + i alpha_j)
 // with alpha_j = 1 / phi^j, phi the generalized golden ratio for six
-// coordinates (M. Roberts' R_d sequence; generators from src/render/layout.ts).
+// coordinates (M. Roberts' R_d sequence; generators from src/render/sampling.ts).
 // The shifts are a random Cranley-Patterson rotation hashed from (pixel,
 // seed): every sample is exactly uniform, so the estimate stays unbiased, and
 // renders with different seeds are statistically independent. Arithmetic is

@@ -22,7 +22,7 @@
 // lane with no triangle pending) or as a triangle, both computed and one
 // selected. Per step the 4 fetches are about half the cost, the two box
 // tests, the triangle test and the bookkeeping (stack included) the rest
-// (bench/bvh-kernel-ab.ts, bench/swiftshader-costs.ts).
+// (bench/bvh-kernel-ab.ts; bench/results/bvh-speed-2026-11-28.md).
 // A node step tests both children's boxes: hit leaves become the pending
 // triangle range (sibling leaves are consecutive: one range), a hit child node
 // the next node (both: the nearer, the other pushed on a fixed stack of

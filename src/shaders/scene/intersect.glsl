@@ -13,7 +13,6 @@ const int HIT_TRIANGLE = 3;
 struct Hit {
   float t;
   int kind;
-  int index;        // sphere index (HIT_SPHERE)
   vec3 position;
   vec3 normal;      // shading normal, on the outside of the surface: it decides the side
   vec3 geometricNormal;  // offsets spawned rays (equal to `normal` but on smooth meshes)
@@ -75,7 +74,6 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   Hit hit;
   hit.t = min(tSphere, tGround);
   hit.kind = hit.t == INFINITY ? HIT_NONE : isGround ? HIT_GROUND : HIT_SPHERE;
-  hit.index = sphere;
 
   // Both surfaces are derived and the right one selected (see sphereHitT).
   SphereRecord record = loadSphere(sphere);
@@ -97,7 +95,6 @@ Hit intersectScene(vec3 origin, vec3 direction) {
     BvhSurface s = meshSurface(triangle);
     hit.t = triangle.triangle.t;
     hit.kind = HIT_TRIANGLE;
-    hit.index = triangle.triangle.triangle;
     hit.position = s.position;
     hit.normal = s.shadingNormal;
     hit.geometricNormal = s.geometricNormal;
