@@ -16,10 +16,10 @@ import { clearError, notify, showError, showFatal, showIssues } from './messages
 import { Autosave, readStartState, type SaveStatus, type StartState } from './persistence';
 import { linkDigest } from './savedState';
 import { SceneLoader } from './sceneLoader';
-import { addModelFile, isModelFile, MESH_EXAMPLES, meshExampleFiles } from './meshControls';
+import { addModelFile, isModelFile, meshExampleFiles } from './meshControls';
 import { EnvironmentMaps, MAP_FILE_PATTERN } from './environmentMaps';
 import { bundledMapName } from './bundledMaps';
-import { MAP_EXAMPLES } from './mapExamples';
+import { MAP_EXAMPLES, MESH_EXAMPLES } from './examples';
 import { Panel } from './panel';
 import { encodePfm } from '../image/pfm';
 import type { RenderStats } from './renderLoop';

@@ -133,20 +133,6 @@ export function addMeshControls(folder: GUI, app: App, mesh: () => Mesh, tracked
 
 // ---------------------------------------------------------------- examples
 
-/** Example scenes with a bundled model, by the name shown in the example picker. */
-export const MESH_EXAMPLES: Readonly<Record<string, unknown>> = {
-  'bunny (model)': {
-    version: 2,
-    camera: { position: [0, 1.3, 4.6], target: [0, 0.6, 0], fov: 35 },
-    image: { width: 256, height: 192 },
-    environment: { color: [0.6, 0.7, 0.9], intensity: 0.5 },
-    ground: { height: 0, material: { color: [0.6, 0.6, 0.6], roughness: 0.9 } },
-    lights: [{ position: [2, 4, 3], radius: 0.5, intensity: 30 }],
-    spheres: [{ center: [1.3, 0.35, 0.4], radius: 0.35, material: { type: 'dielectric', ior: 1.5 } }],
-    meshes: [{ file: 'bunny.ply', position: [-0.1, 0, 0], rotation: [0, 20, 0], scale: 0.12, material: { color: [0.85, 0.8, 0.7], roughness: 0.45 } }],
-  },
-};
-
 /** The files the mesh examples name (the bunny as a PLY with smooth normals). */
 export async function meshExampleFiles(): Promise<Map<string, Blob>> {
   const { default: bunny } = await import('bunny');

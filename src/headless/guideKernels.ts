@@ -1,7 +1,7 @@
 /**
  * Test kernels of the caustic-guide mixture (sampleGuided / guidedPdf) and
  * of the BSDF sample weights: src/shaders/test/guide_kernels.frag compiled
- * with one caustic guide and the dielectric, the guide's mirror and light
+ * with one caustic guide and every material kind, the guide's mirror and light
  * written into the SceneBlock uniform block as the renderer writes them.
  * Used by test/browser only, through runKernel (./kernels.ts).
  */

@@ -338,7 +338,7 @@ function toSceneIssues(issues: readonly z.core.$ZodIssue[]): SceneIssue[] {
 function unknownKeyMessage(objectPath: readonly PropertyKey[], key: string): string {
   const pattern = formatPath(objectPath.map((part) => (typeof part === 'number' ? -1 : part)));
   const known = KNOWN_KEYS[pattern] ?? [];
-  // Keys of another material type or environment kind (such as "ior" on a standard material).
+  // Keys of another material kind or environment kind (such as "ior" on a material without one).
   if (known.includes(key)) return 'unknown key for this type (see "type", or "map" for environments)';
   const wanted = simplify(key);
   if (wanted.length > 32) return 'unknown key';

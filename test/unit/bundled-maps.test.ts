@@ -10,7 +10,7 @@
 import { describe, expect, it } from 'vitest';
 import { readFileSync } from 'node:fs';
 import { BUNDLED_MAP_NAMES, bundledMapBytes, bundledMapFile, bundledMapName } from '../../src/app/bundledMaps';
-import { MAP_EXAMPLES } from '../../src/app/mapExamples';
+import { MAP_EXAMPLES } from '../../src/app/examples';
 import { resolveAssets } from '../../src/app/sceneLoader';
 import { decodeEnvironmentMap } from '../../src/scene/envmap';
 import { defaultScene } from '../../src/scene/presets';

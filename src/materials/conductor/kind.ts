@@ -5,7 +5,7 @@
  * `specular_reflectance` = color. Either a named metal of Mitsuba's table
  * (metals.ts: the RGB eta and k of its RGB mode) or eta and k given; "none"
  * is the ideal mirror (reflectance 1). One-sided on spheres and the ground,
- * two-sided on meshes, like the standard material. GLSL: conductor.glsl.
+ * two-sided on meshes (the format's sidedness rule). GLSL: conductor.glsl.
  */
 import * as z from 'zod';
 import type { MaterialKind } from '../kind';

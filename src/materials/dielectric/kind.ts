@@ -49,6 +49,6 @@ export const dielectric: MaterialKind<DielectricMaterial> = {
     { control: 'number', key: 'roughness', label: 'roughness', min: 0, max: 1, step: 0.01 },
     { control: 'number', key: 'ior', label: 'ior', min: MIN_IOR, max: MAX_IOR, step: 0.01 },
   ],
-  // A standard albedo used as a per-crossing tint would make dark, saturated glass: clear glass instead.
+  // An opaque surface's albedo used as a per-crossing tint would make dark, saturated glass: clear glass instead.
   fromOther: () => ({ type: 'dielectric', color: [...NEW_GLASS.color], roughness: NEW_GLASS.roughness, ior: NEW_GLASS.ior }),
 };

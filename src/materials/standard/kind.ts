@@ -1,6 +1,6 @@
 /**
  * The standard material (scene format version 1): a blend of a
- * Fresnel-less GGX conductor and Lambert, `(1 - r) * GGX (alpha = r^2) + r *
+ * Fresnel-less GGX microfacet mirror and Lambert, `(1 - r) * GGX (alpha = r^2) + r *
  * Lambert`, both tinted by `color`. Mitsuba: `blendbsdf` with weight = r,
  * first child the specular lobe (`conductor` or `roughconductor` with
  * material="none", specular_reflectance = color), second `diffuse`; pure

@@ -1,6 +1,6 @@
 // The standard material (scene format version 1):
 //   f = (1 - r) * Specular + r * Lambert, both tinted by color,
-//   Specular = GGX conductor, alpha = r^2, separable Smith G, no Fresnel.
+//   Specular = GGX microfacet mirror, alpha = r^2, separable Smith G, no Fresnel.
 // One-sided, as in Mitsuba: seen from below its surface (wo.z <= 0) it
 // reflects nothing. The lobes are chosen with probabilities (1 - r) and r;
 // the pdf of a direction is the mixture of both lobes' pdfs.

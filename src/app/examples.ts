@@ -1,0 +1,36 @@
+/**
+ * Example scenes of the page beyond the presets of src/scene/presets (listed
+ * in the example picker after them): those that use a bundled environment
+ * map or a bundled model (meshControls.ts's meshExampleFiles).
+ */
+import { bundledMapFile } from './bundledMaps';
+
+/** Like test/fixtures/scenes/envmap.json, lit by the map alone. */
+export const MAP_EXAMPLES: Record<string, unknown> = {
+  'environment map': {
+    version: 2,
+    camera: { position: [0, 1.4, 6], target: [0, 0.7, 0], fov: 38 },
+    image: { width: 640, height: 480 },
+    environment: { map: bundledMapFile('sunset'), intensity: 1, rotation: 30 },
+    ground: { height: 0, material: { color: [0.6, 0.6, 0.6], roughness: 1 } },
+    spheres: [
+      { center: [-1.6, 0.7, 0], radius: 0.7, material: { color: [0.95, 0.95, 0.95], roughness: 0 } },
+      { center: [0, 0.7, -0.4], radius: 0.7, material: { color: [0.9, 0.6, 0.3], roughness: 0.4 } },
+      { center: [1.6, 0.7, 0], radius: 0.7, material: { type: 'dielectric', ior: 1.5 } },
+    ],
+  },
+};
+
+/** Example scenes with a bundled model, by the name shown in the example picker. */
+export const MESH_EXAMPLES: Readonly<Record<string, unknown>> = {
+  'bunny (model)': {
+    version: 2,
+    camera: { position: [0, 1.3, 4.6], target: [0, 0.6, 0], fov: 35 },
+    image: { width: 256, height: 192 },
+    environment: { color: [0.6, 0.7, 0.9], intensity: 0.5 },
+    ground: { height: 0, material: { color: [0.6, 0.6, 0.6], roughness: 0.9 } },
+    lights: [{ position: [2, 4, 3], radius: 0.5, intensity: 30 }],
+    spheres: [{ center: [1.3, 0.35, 0.4], radius: 0.35, material: { type: 'dielectric', ior: 1.5 } }],
+    meshes: [{ file: 'bunny.ply', position: [-0.1, 0, 0], rotation: [0, 20, 0], scale: 0.12, material: { color: [0.85, 0.8, 0.7], roughness: 0.45 } }],
+  },
+};
