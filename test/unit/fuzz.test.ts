@@ -70,6 +70,9 @@ function checkScene(scene: Scene): void {
     if (m.type === 'dielectric') {
       keys(m, ['type', 'color', 'roughness', 'ior', ...emission], what);
       check(m.ior >= 1.01 && m.ior <= 4, `${what}.ior in [1.01, 4]`);
+    } else if (m.type === 'conductor') {
+      keys(m, ['type', ...('metal' in m ? ['metal'] : []), 'eta', 'k', 'roughness', 'color', ...emission], what);
+      check(vec(m.eta, (x) => x >= 0) && vec(m.k, (x) => x >= 0), `${what}.eta and k >= 0`);
     } else {
       keys(m, ['type', 'color', 'roughness', ...emission], what);
       check(m.type === 'standard', `${what}.type is standard or dielectric`);
@@ -80,10 +83,12 @@ function checkScene(scene: Scene): void {
   };
 
   keys(scene, ['version', 'camera', 'image', 'render', 'environment', 'ground', 'lights', 'spheres', 'meshes'], 'the scene');
-  check(scene.version === 1 || scene.version === 2, 'version is 1 or 2');
+  check(scene.version === 1 || scene.version === 2 || scene.version === 3, 'version is 1, 2 or 3');
+  const materials = [...scene.spheres.map((s) => s.material), ...scene.meshes.map((m) => m.material), ...(scene.ground ? [scene.ground.material] : [])];
   const v2Used = scene.meshes.length > 0 || (scene.environment !== null && 'map' in scene.environment) ||
-    [...scene.spheres.map((s) => s.material), ...(scene.ground ? [scene.ground.material] : [])].some((m) => m.type !== 'standard' || m.emission);
-  if (v2Used) check(scene.version === 2, 'version-2 keys only in version-2 documents');
+    materials.some((m) => m.type !== 'standard' || m.emission);
+  if (v2Used) check(scene.version >= 2, 'version-2 keys only in version-2 documents');
+  if (materials.some((m) => m.type === 'conductor')) check(scene.version === 3, 'version-3 kinds only in version-3 documents');
   const { camera } = scene;
   check(vec(camera.position, inBox) && vec(camera.target, inBox) && vec(camera.up, inBox), 'camera vectors in the box');
   check(camera.position.some((x, i) => x !== camera.target[i]), 'camera.target differs from position');
@@ -108,7 +113,7 @@ function checkScene(scene: Scene): void {
   if (scene.ground !== null) {
     check(finite(scene.ground.height), 'ground.height finite');
     material(scene.ground.material, 'ground.material');
-    check(scene.ground.material.type === 'standard' && !scene.ground.material.emission, 'ground is standard, not emissive');
+    check(scene.ground.material.type !== 'dielectric' && !scene.ground.material.emission, 'ground has no inside, emits nothing');
   }
   check(scene.lights.length <= MAX_LIGHTS, 'at most MAX_LIGHTS lights');
   scene.lights.forEach((light, i) => {
@@ -339,7 +344,7 @@ describe('fuzzing parseScene', () => {
 });
 
 describe('every bad value is reported at its own path', () => {
-  const seed = fixtures.find((f) => ((f.spheres ?? []) as unknown[]).length === 5)!;
+  const seed = fixtures.find((f) => ((f.spheres ?? []) as unknown[]).length === 5 && (f.version ?? 1) === 1)!;
   const leaves = pathsOf(seed).filter((path) => typeof containerOf(seed, path)[path[path.length - 1]] === 'number');
 
   it.each([
