@@ -19,6 +19,22 @@ export const MAP_EXAMPLES: Record<string, unknown> = {
       { center: [1.6, 0.7, 0], radius: 0.7, material: { type: 'dielectric', ior: 1.5 } },
     ],
   },
+  // Like test/fixtures/scenes/conductor.json (version 3): named metals, eta and k given, a rough metal ground.
+  metals: {
+    version: 3,
+    camera: { position: [0, 1.2, 5.0], target: [0, 0.45, 0], fov: 34 },
+    image: { width: 640, height: 400 },
+    environment: { map: bundledMapFile('sunset'), intensity: 0.7, rotation: 60 },
+    ground: { material: { type: 'conductor', metal: 'Al', roughness: 0.35, color: [0.5, 0.5, 0.5] } },
+    lights: [{ position: [-2, 3.5, 2.5], radius: 0.3, intensity: 30 }],
+    spheres: [
+      { center: [-2.0, 0.45, 0], radius: 0.45, material: { type: 'conductor', metal: 'Au' } },
+      { center: [-1.0, 0.45, 0], radius: 0.45, material: { type: 'conductor', metal: 'Cu', roughness: 0.25 } },
+      { center: [0.0, 0.45, 0], radius: 0.45, material: { type: 'conductor', metal: 'Ag', roughness: 0.5 } },
+      { center: [1.0, 0.45, 0], radius: 0.45, material: { type: 'conductor', metal: 'Cr', roughness: 0.15 } },
+      { center: [2.0, 0.45, 0], radius: 0.45, material: { type: 'conductor', eta: [0.2, 0.9, 1.1], k: [3.9, 2.45, 2.1], roughness: 0.7, color: [1, 0.9, 0.8] } },
+    ],
+  },
 };
 
 /** Example scenes with a bundled model, by the name shown in the example picker. */

@@ -55,8 +55,8 @@ function thrown(run: () => unknown): SceneError {
 }
 
 describe('valid scenes', () => {
-  it('finds the twelve fixtures', () => {
-    expect(fixtureNames.sort()).toEqual(['bunny', 'emissive', 'emissive-mesh', 'emissive-tilted-normals', 'envmap', 'furnace', 'glass', 'glossy', 'instanced', 'mirrors', 'seed', 'small-light']);
+  it('finds the thirteen fixtures', () => {
+    expect(fixtureNames.sort()).toEqual(['bunny', 'conductor', 'emissive', 'emissive-mesh', 'emissive-tilted-normals', 'envmap', 'furnace', 'glass', 'glossy', 'instanced', 'mirrors', 'seed', 'small-light']);
   });
 
   it.each(fixtureNames)('parses %s, keeping its values', (name) => {
@@ -217,7 +217,7 @@ describe('valid scenes', () => {
 
 describe('presets', () => {
   it('are copies of the fixture scenes (all but those that need map or mesh files)', () => {
-    expect([...PRESET_NAMES].sort()).toEqual(fixtureNames.filter((name) => !['bunny', 'envmap', 'emissive-mesh', 'emissive-tilted-normals', 'instanced'].includes(name)).sort());
+    expect([...PRESET_NAMES].sort()).toEqual(fixtureNames.filter((name) => !['bunny', 'conductor', 'envmap', 'emissive-mesh', 'emissive-tilted-normals', 'instanced'].includes(name)).sort());
     for (const name of PRESET_NAMES) expect(PRESETS[name]).toEqual(fixture(name));
   });
 
