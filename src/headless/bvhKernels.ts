@@ -8,7 +8,7 @@ import kernelFrag from '../shaders/test/bvh_kernels.frag?raw';
 import { TEXTURE_UNITS } from '../render/gl/textureUnits';
 import { BvhTextures, bvhDefines } from '../render/bvhTextures';
 import { createDataTextureArray } from '../render/gl/dataTexture';
-import { bvhTexture, type LayeredTextureData, type PackedBvh } from '../render/bvh/pack';
+import { BVH_ROOT_NODE, bvhTexture, type LayeredTextureData, type PackedBvh } from '../render/bvh/pack';
 import { buildBvhAsync } from '../render/bvh/buildAsync';
 import { decodeMesh } from '../scene/mesh';
 import { kernelProgram, runFullScreen } from './kernelHarness';
@@ -20,14 +20,16 @@ export interface BvhTraceRequest {
   rays: string;
   /** Rays per row of the output (width); rays.length / 8 / width rows. */
   width: number;
-  mode: 'closest' | 'any' | 'surface';
+  mode: 'closest' | 'any' | 'surface' | 'uv';
+  /** Mode 'uv': the root node of the group to traverse (default the first group's, BVH_ROOT_NODE; packed.roots). */
+  root?: number;
   /** Extra timed draws after the first (for bench/bvh-trace.ts): then the result is their mean time in ms, as text. */
   timedDraws?: number;
   /** Another text of scene/bvh.glsl to trace with (bench/bvh-kernel-ab.ts compares variants). */
   bvhSource?: string;
 }
 
-const MODES = { closest: 0, any: 1, surface: 2 } as const;
+const MODES = { closest: 0, any: 1, surface: 2, uv: 3 } as const;
 
 function fromBase64(text: string): Float32Array {
   return new Float32Array(fromBase64Bytes(text).buffer);
@@ -58,7 +60,7 @@ function bvhProgram(source = bvhGlsl) {
   }));
 }
 
-/** Traces the request's rays; returns RGBA float32 per ray (closest: triangle, t, b1, b2; any: hit; surface: shading normal, material). */
+/** Traces the request's rays; returns RGBA float32 per ray (closest: triangle, t, b1, b2; any: hit; surface: shading normal, material; uv: u, v, triangle, t). */
 export function traceBvh(request: BvhTraceRequest): string {
   const kernel = bvhProgram(request.bvhSource);
   const { gl } = kernel;
@@ -71,8 +73,8 @@ export function traceBvh(request: BvhTraceRequest): string {
   try {
     const result = runFullScreen(
       kernel,
-      { uRays: TEXTURE_UNITS.kernelRays, uMode: MODES[request.mode], uGridWidth: request.width },
-      { uRays: 'int', uMode: 'int', uGridWidth: 'int' },
+      { uRays: TEXTURE_UNITS.kernelRays, uMode: MODES[request.mode], uGridWidth: request.width, uRoot: request.root ?? BVH_ROOT_NODE },
+      { uRays: 'int', uMode: 'int', uGridWidth: 'int', uRoot: 'int' },
       request.width,
       rows,
       {
@@ -92,11 +94,11 @@ export function traceBvh(request: BvhTraceRequest): string {
   }
 }
 
-/** Builds a BVH in the page's worker over one mesh (base64 Float32 positions and normals or null, Uint32 indices); returns the packed texture (base64). */
-export async function buildInWorker(positions: string, normals: string | null, indices: string, material: number, summaryOnly = false): Promise<{ texture: string; depth: number; milliseconds: number }> {
+/** Builds a BVH in the page's worker over one mesh (base64 Float32 positions, normals or null, Uint32 indices, Float32 uvs or null); returns the packed texture (base64). */
+export async function buildInWorker(positions: string, normals: string | null, indices: string, material: number, summaryOnly = false, uvs: string | null = null): Promise<{ texture: string; depth: number; milliseconds: number }> {
   const start = performance.now();
   const index = fromBase64(indices);
-  const mesh = { positions: fromBase64(positions), normals: normals === null ? null : fromBase64(normals), indices: new Uint32Array(index.buffer), material };
+  const mesh = { positions: fromBase64(positions), normals: normals === null ? null : fromBase64(normals), indices: new Uint32Array(index.buffer), uvs: uvs === null ? null : fromBase64(uvs), material };
   const packed = await buildBvhAsync([[mesh]]);
   lastBuilt = packed;
   const milliseconds = performance.now() - start;
@@ -104,12 +106,13 @@ export async function buildInWorker(positions: string, normals: string | null, i
   return { texture: toBase64(packed.texture.data), depth: packed.depth, milliseconds };
 }
 
-/** Decodes a mesh file in the page (base64 bytes); returns its arrays as base64, or the AssetError's message. */
-export async function decodeInPage(fileName: string, bytes: string): Promise<{ positions: string; normals: string | null; indices: string } | { error: string }> {
+/** Decodes a mesh file in the page (base64 bytes); returns its arrays as base64 (uvs, uvs1: null when absent), or the AssetError's message. */
+export async function decodeInPage(fileName: string, bytes: string): Promise<{ positions: string; normals: string | null; indices: string; uvs: string | null; uvs1: string | null } | { error: string }> {
   const raw = fromBase64Bytes(bytes);
   try {
     const mesh = await decodeMesh(raw, fileName);
-    return { positions: toBase64(mesh.positions), normals: mesh.normals ? toBase64(mesh.normals) : null, indices: toBase64(new Float32Array(mesh.indices.buffer)) };
+    const optional = (a: Float32Array | null | undefined) => (a ? toBase64(a) : null);
+    return { positions: toBase64(mesh.positions), normals: optional(mesh.normals), indices: toBase64(new Float32Array(mesh.indices.buffer)), uvs: optional(mesh.uvs), uvs1: optional(mesh.uvs1) };
   } catch (error) {
     return { error: `${(error as Error).name}: ${(error as Error).message}` };
   }

@@ -7,9 +7,9 @@ struct Surface {
   vec3 position;
   vec3 normal;           // shading normal, on the outside of the surface
   vec3 geometricNormal;
-  // Texture coordinates: the ground's are world (x, z) (the format's rule);
-  // spheres have none. A mesh's come from its file once its corners carry
-  // them (0 until then).
+  // Texture coordinates (the hit's): the ground's are world (x, z) (the
+  // format's rule); spheres have none (0); a mesh's are its file's, from its
+  // triangles' corners (0 when the file has none).
   vec2 uv;
 };
 
@@ -18,7 +18,7 @@ Surface surfaceAt(Hit hit) {
   s.position = hit.position;
   s.normal = hit.normal;
   s.geometricNormal = hit.geometricNormal;
-  s.uv = hit.kind == HIT_GROUND ? hit.position.xz : vec2(0.0);
+  s.uv = hit.uv;
   return s;
 }
 

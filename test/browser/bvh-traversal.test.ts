@@ -3,18 +3,21 @@
  * against the TypeScript reference over the same packed textures: the
  * closest hit of random rays over the bunny equals brute force over every
  * triangle, any-hit agrees, the surface's interpolated normal and material
- * are right; and the watertight test lets no ray aimed exactly at a shared
- * edge or vertex of an icosphere slip through.
+ * are right, and so are the texture coordinates interpolated from the
+ * corners' (also in a shared group, in object space); and the watertight
+ * test lets no ray aimed exactly at a shared edge or vertex of an icosphere
+ * slip through.
  */
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { buildBvh, type BvhMeshInput } from '../../src/render/bvh/build';
-import { bvhBounds, packBvh, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
+import { bvhBounds, packBvh, packBvhGroups, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
 import { buildAndPack } from '../../src/render/bvh/worker';
 import { bruteForce, traverseBvh, type Vec3 } from '../../src/render/bvh/traverse';
-import { transformMesh } from '../../src/scene/mesh/transform';
+import { applyMatrix, inverseAffine, meshToWorldMatrix, transformMesh } from '../../src/scene/mesh/transform';
 import { decodeMesh } from '../../src/scene/mesh';
 import type { BvhTraceRequest } from '../../src/headless/bvhKernels';
+import type { TriangleMesh } from '../../src/scene/types';
 import { useRenderSession } from '../support/browser';
 import { icosphere } from '../support/icosphere';
 import { random } from '../support/bvhScenes';
@@ -42,10 +45,10 @@ const f32Ray = (data: Float32Array, i: number): Ray => ({
 describe('GLSL BVH traversal', () => {
   const session = useRenderSession();
 
-  async function trace(packed: PackedBvh, rays: Float32Array, mode: BvhTraceRequest['mode']): Promise<Float32Array> {
+  async function trace(packed: PackedBvh, rays: Float32Array, mode: BvhTraceRequest['mode'], root?: number): Promise<Float32Array> {
     const request: BvhTraceRequest = {
       texture: base64(packed.texture.data),
-      rays: base64(rays), width: 64, mode,
+      rays: base64(rays), width: 64, mode, root,
     };
     const out = await session().page.evaluate((r) => window.pathtraceBvh.trace(r), request);
     const bytes = Buffer.from(out, 'base64');
@@ -143,6 +146,81 @@ describe('GLSL BVH traversal', () => {
     expect(checked).toBeGreaterThan(1500);
   });
 
+  it('texture coordinates: the corners\' interpolated at the hit (smooth and flat textured meshes, one without, a shared group in object space)', async () => {
+    const uvbox = await decodeMesh(new Uint8Array(readFileSync(new URL('../fixtures/meshes/uvbox.obj', import.meta.url))), 'uvbox.obj');
+    expect(uvbox.uvs && uvbox.normals).toBeTruthy();
+    // uv = a function of the object-space position, different per mesh: a mixed-up corner or mesh shows.
+    const mapped = (mesh: TriangleMesh, f: (p: number[]) => [number, number]): TriangleMesh => {
+      const uvs = new Float32Array((mesh.positions.length / 3) * 2);
+      for (let v = 0; v < mesh.positions.length / 3; v++) uvs.set(f([0, 1, 2].map((k) => mesh.positions[v * 3 + k])), v * 2);
+      return { ...mesh, uvs };
+    };
+    const world: BvhMeshInput[] = [
+      { ...transformMesh(uvbox, { position: [0, 0, 0], rotation: [10, 20, 30] }), material: 0, mesh: 0 }, // smooth, the file's uvs
+      { ...transformMesh({ ...uvbox, normals: null }, { position: [1.5, 0.2, 0], rotation: [-30, 40, 5] }), material: 0, mesh: 1 }, // flat, the file's uvs
+      { ...mapped(transformMesh(icosphere(3, true), { position: [-1.5, 0, 0.3], scale: 0.6 }), (p) => [0.3 + 0.7 * p[0] - 0.2 * p[2], 1.3 * p[1] - 0.1]), material: 0, mesh: 2 },
+      { ...transformMesh(icosphere(2, false), { position: [0, 1.5, 0], scale: 0.5 }), material: 0, mesh: 3 }, // no uvs: (0, 0)
+    ];
+    const shared: BvhMeshInput[] = [{ ...mapped(icosphere(3, true), (p) => [2 * p[0] + p[1], 0.5 - p[2]]), material: 0, mesh: -1 }];
+    const groups = [world, shared];
+    const packed = packBvhGroups(groups.map((meshes) => ({ bvh: buildBvh(meshes), meshes })));
+    const worldTriangles = world.reduce((n, m) => n + m.indices.length / 3, 0);
+    // The input triangle of BVH triangle j: its corners' uvs (null without) from the input meshes, not the texture.
+    const inputs = groups.flat();
+    const cornerUvs = (j: number): number[][] | null => {
+      let id = packed.triangleOrder[j];
+      let m = 0;
+      while (id >= inputs[m].indices.length / 3) id -= inputs[m++].indices.length / 3;
+      const { uvs, indices } = inputs[m];
+      return uvs ? [0, 1, 2].map((c) => [uvs[indices[id * 3 + c] * 2], uvs[indices[id * 3 + c] * 2 + 1]]) : null;
+    };
+    // An instance's object-to-world transform: rays are taken into object space as scene/instances.glsl does.
+    const toWorld = meshToWorldMatrix({ position: [0.4, -2, 1], rotation: [25, -60, 15], scale: 1.7 });
+    const toObject = inverseAffine(toWorld);
+    const r = random(11);
+    const rays = (first: number, count: number, objectSpace: boolean): Ray[] =>
+      Array.from({ length: 2048 }, () => {
+        const tris = triangleData(packed, first + Math.floor(r() * count));
+        const [b1, b2] = [r() * 0.6, r() * 0.4];
+        const target = [0, 1, 2].map((k) => tris[k] * (1 - b1 - b2) + tris[4 + k] * b1 + tris[8 + k] * b2);
+        const origin = target.map((x) => x + (r() * 2 - 1) * 4);
+        if (!objectSpace) return { origin: origin as unknown as Vec3, dir: target.map((x, k) => x - origin[k]) as unknown as Vec3, tMax: 3.4e38 };
+        // A world ray at the instance's target, taken into object space.
+        const [oo, tt] = [origin, target].map((p) => applyMatrix(toObject, applyMatrix(toWorld, p, null).positions, null).positions);
+        return { origin: [oo[0], oo[1], oo[2]], dir: [tt[0] - oo[0], tt[1] - oo[1], tt[2] - oo[2]], tMax: 3.4e38 };
+      });
+    let [textured, untextured] = [0, 0];
+    for (const [group, objectSpace] of [[0, false], [1, true]] as const) {
+      const data = rayData(group === 0 ? rays(0, worldTriangles, false) : rays(worldTriangles, packed.triangleCount - worldTriangles, true));
+      const out = await trace(packed, data, 'uv', packed.roots[group]);
+      const wrong: string[] = [];
+      for (let i = 0; i < data.length / 8; i++) {
+        const ray = f32Ray(data, i);
+        const expected = traverseBvh(packed, ray.origin, ray.dir, Infinity, false, undefined, packed.roots[group]);
+        const [u, v, triangle] = out.subarray(i * 4, i * 4 + 3);
+        if (!expected) {
+          if (triangle !== -1) wrong.push(`ray ${i}: GLSL hits ${triangle}, TypeScript nothing`);
+          continue;
+        }
+        // The GLSL's own triangle (a tie on a shared edge may pick the neighbour), its barycentrics in TypeScript.
+        const hit = triangle >= 0 ? bruteForce(packed, ray.origin, ray.dir, Infinity, triangle) : null;
+        if (!hit || Math.abs(hit.t - expected.t) > 1e-4 * expected.t) {
+          wrong.push(`ray ${i}: GLSL triangle ${triangle} is not hit`);
+          continue;
+        }
+        const corners = cornerUvs(triangle);
+        const b = [1 - hit.b1 - hit.b2, hit.b1, hit.b2];
+        const uv = corners ? [0, 1].map((k) => b[0] * corners[0][k] + b[1] * corners[1][k] + b[2] * corners[2][k]) : [0, 0];
+        if (corners) textured++;
+        else untextured++;
+        if (Math.abs(u - uv[0]) > 2e-4 || Math.abs(v - uv[1]) > 2e-4) wrong.push(`ray ${i} (group ${group}, triangle ${triangle}): GLSL uv (${u}, ${v}), expected (${uv[0]}, ${uv[1]})`);
+      }
+      expect(wrong.slice(0, 10)).toEqual([]);
+    }
+    expect(textured, 'hits on textured triangles').toBeGreaterThan(3000);
+    expect(untextured, 'hits on the mesh without uvs').toBeGreaterThan(100);
+  });
+
   it('the page builds the same BVH in its Web Worker as Node does', async () => {
     const mesh = transformMesh(icosphere(4, false), { rotation: [10, 20, 30] });
     const b64 = (a: Float32Array | Uint32Array) => Buffer.from(a.buffer, a.byteOffset, a.byteLength).toString('base64');
@@ -150,6 +228,12 @@ describe('GLSL BVH traversal', () => {
     const expected = buildAndPack([{ ...mesh, material: 2 }]);
     expect(built.depth).toBe(expected.depth);
     expect(built.texture).toBe(b64(expected.texture.data));
+    // With texture coordinates, flat and smooth.
+    const uvs = new Float32Array((mesh.positions.length / 3) * 2).map((_, i) => mesh.positions[Math.floor(i / 2) * 3 + (i % 2)] * 0.5 + 0.25);
+    for (const normals of [null, transformMesh(icosphere(4, true), { rotation: [10, 20, 30] }).normals!]) {
+      const withUvs = await session().page.evaluate(([p, n, i, t]) => window.pathtraceBvh.buildInWorker(p, n, i, 2, false, t), [b64(mesh.positions), normals && b64(normals), b64(mesh.indices), b64(uvs)] as const);
+      expect(withUvs.texture).toBe(b64(buildAndPack([{ ...mesh, normals, uvs, material: 2 }]).texture.data));
+    }
   });
 
   it('a 328k-triangle smooth icosphere (its texture spans 3 layers): hits and normals as in TypeScript', async () => {

@@ -33,6 +33,8 @@ describe('mesh decoders in the browser', () => {
         positions: b64(expected.positions),
         normals: expected.normals ? b64(expected.normals) : null,
         indices: b64(expected.indices),
+        uvs: expected.uvs ? b64(expected.uvs) : null,
+        uvs1: expected.uvs1 ? b64(expected.uvs1) : null,
       });
     }
   });

@@ -186,6 +186,21 @@ describe('queries through an instance', async () => {
     expect(stored(bunny).triangleCount).toBe(3 * (bunny.indices.length / 3));
   });
 
+  it("texture coordinates reach the BVH's inputs: a copy's and a shared file's", () => {
+    const withUvs = (m: TriangleMesh): TriangleMesh => ({ ...m, uvs: new Float32Array((m.positions.length / 3) * 2).map((_, i) => i * 1e-3) });
+    const [dense, small] = [withUvs(icosphere(6, true)), withUvs(icosphere(1, false))];
+    const scene = parseSceneText(
+      JSON.stringify({
+        version: 2,
+        camera: CAMERA,
+        meshes: [...[0, 1, 2].map((i) => ({ file: 'dense.ply', position: [i, 0, 0] })), { file: 'small.ply', position: [0, 2, 0] }].map((m) => ({ ...m, material: { color: [0.5, 0.5, 0.5], roughness: 1 } })),
+      }),
+    );
+    const [copies, shared] = bvhInputs(scene, { maps: new Map(), meshes: new Map([['dense.ply', dense], ['small.ply', small]]) });
+    expect(copies.map((m) => m.uvs)).toEqual([small.uvs]);
+    expect(shared.map((m) => m.uvs)).toEqual([dense.uvs]);
+  });
+
   it("the BVH's texels depend on the meshes' geometry only: not on spheres, lights, the ground or materials", () => {
     const meshes: Mesh[] = [mesh('a'), { ...mesh('b'), position: [1, 0, 0] }];
     const plain = sceneWith(meshes);

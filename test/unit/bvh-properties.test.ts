@@ -11,7 +11,7 @@ import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
 import { buildBvh, MAX_BVH_DEPTH, type BvhMeshInput } from '../../src/render/bvh/build';
 import { BVH_NODE_TEXELS, BVH_ROOT_NODE, packBvh, triangleAt, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
-import { bruteForce, traverseBvh, type Vec3 } from '../../src/render/bvh/traverse';
+import { bruteForce, hitUv, traverseBvh, uvTexel, type Vec3 } from '../../src/render/bvh/traverse';
 import { decodeMesh } from '../../src/scene/mesh';
 import { icosphere } from '../support/icosphere';
 import { random, triangleSoup } from '../support/bvhScenes';
@@ -139,6 +139,41 @@ describe('BVH structure', () => {
       if (!m.normals) expect(normalTexel).toBe(-1);
       else for (let c = 0; c < 3; c++) for (let k = 0; k < 3; k++) expect(tex[(normalTexel + c) * 4 + k]).toBe(m.normals[m.indices[local * 3 + c] * 3 + k]);
     }
+  });
+
+  it('packs the corners\' texture coordinates of textured triangles (flat and smooth) and nothing for the others', () => {
+    const withUvs = (m: BvhMeshInput, seed: number): BvhMeshInput => {
+      const r = random(seed);
+      return { ...m, uvs: new Float32Array((m.positions.length / 3) * 2).map(() => r() * 4 - 2) };
+    };
+    const meshes = [triangleSoup(30, 1, 2, 0, false), withUvs(triangleSoup(40, 2, 2, 0, false), 3), triangleSoup(20, 4, 2, 0, true), withUvs(triangleSoup(50, 5, 2, 0, true), 6)];
+    const counts = meshes.map((m) => m.indices.length / 3);
+    const packed = build(meshes);
+    const tex = packed.texture.data;
+    const blocks = new Set<number>();
+    for (let j = 0; j < packed.triangleCount; j++) {
+      let id = packed.triangleOrder[j];
+      let mesh = 0;
+      while (id >= counts[mesh]) id -= counts[mesh++];
+      const m = meshes[mesh];
+      const a = triangleData(packed, j)[7];
+      expect(a >= 0, 'smooth triangles keep their normals at the attributes texel').toBe(!!m.normals);
+      if (!m.normals && !m.uvs) expect(a).toBe(-1);
+      const k = uvTexel(tex, j);
+      expect(k >= 0).toBe(!!m.uvs);
+      if (k >= 0) blocks.add(k);
+      // Each corner's uv at its own barycentric vertex: (1, 0, 0), (0, 1, 0), (0, 0, 1).
+      const corners = [[0, 0], [1, 0], [0, 1]].map(([b1, b2]) => hitUv(packed, { triangle: j, t: 1, b1, b2 }));
+      for (let c = 0; c < 3; c++) {
+        const v = m.indices[id * 3 + c];
+        expect(corners[c]).toEqual(m.uvs ? [m.uvs[v * 2], m.uvs[v * 2 + 1]] : [0, 0]);
+      }
+    }
+    expect(blocks.size, 'a block of its own per textured triangle').toBe(90);
+    // Triangles without uvs cost nothing: the nodes follow the attributes (from row 1: 3 texels per smooth triangle, 2 per textured one).
+    const firstNode = (p: PackedBvh) => Math.min(...[...walk(p).nodeVisits.keys()].filter((q) => q !== BVH_ROOT_NODE)) * BVH_NODE_TEXELS;
+    expect(firstNode(packed)).toBe(Math.ceil((2048 + 70 * 3 + 90 * 2) / 4) * 4);
+    expect(firstNode(build(meshes.map((m) => ({ ...m, uvs: null }))))).toBe(Math.ceil((2048 + 70 * 3) / 4) * 4);
   });
 
   it('depth stays within the shader stack for adversarial inputs', () => {

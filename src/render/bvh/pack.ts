@@ -22,7 +22,7 @@
  * Texels, in order:
  *   rows 0 ..              triangle j (BVH order) at texel triangleTexel(j) =
  *                          (j / 681) * 2048 + (j % 681) * 3 .. + 2: (v0.xyz, local material),
- *                          (v1.xyz, normals texel or -1 when flat), (v2.xyz, mesh index)
+ *                          (v1.xyz, attributes), (v2.xyz, mesh index)
  *                          mesh index: the scene mesh (-1 in a shared group: its
  *                          instance gives the mesh); local material: the index
  *                          among the mesh's own materials (0: a mesh has one for
@@ -33,8 +33,16 @@
  *                          geometry, transforms and order, never on the
  *                          spheres, lights, ground or materials.
  *   2044 .. 2047           the root node (node 511), in row 0's spare texels
- *   from the next row      a smooth triangle's vertex normals n0, n1, n2 (unit, w = 0),
- *                          3 texels each, at its normals texel .. + 2
+ *                          attributes: where the triangle's per-corner attributes are
+ *                          (read once per closest hit, never in the traversal loop):
+ *                            -1          none (flat, no texture coordinates);
+ *                            a >= 0      smooth: normals at a .. a + 2, and when n0.w is 1
+ *                                        texture coordinates at a + 3, a + 4;
+ *                            -2 - a      flat with texture coordinates at a, a + 1.
+ *   from the next row      the attribute blocks, one per triangle that has any, in
+ *                          triangle order: a smooth triangle's vertex normals n0, n1, n2
+ *                          (unit; w = 0, n0.w = 1 when uvs follow), then a textured
+ *                          triangle's corners' (u, v): (u0, v0, u1, v1), (u2, v2, 0, 0)
  *   then, from a multiple of 4, the other nodes: node q at texels 4q .. 4q + 3.
  *
  * Only interior nodes are stored (Aila and Laine 2009): a node holds both
@@ -50,11 +58,12 @@
  * triangle is still tested once).
  *
  * Limit: texel indices are stored as floats, exact up to 2^24 = 16.7M
- * texels (16 layers): triangles and normals must end below that, which
- * MAX_TRIANGLES (2.79M, every triangle smooth) ensures; nodes are referred
- * to by node index (texel / 4). Memory is 96 bytes per smooth triangle (48
- * flat) plus 64 bytes per interior node (about one per two triangles at the
- * build's leaf sizes): ~130 MB for 1M smooth triangles.
+ * texels (16 layers): triangles and attributes must end below that, which
+ * MAX_TRIANGLES (2.09M, every triangle smooth and textured) ensures; nodes
+ * are referred to by node index (texel / 4). Memory per triangle: 48 bytes
+ * flat, 96 smooth, 32 more with texture coordinates (80 flat, 128 smooth),
+ * plus 64 bytes per interior node (about one per two triangles at the
+ * build's leaf sizes): ~130 MB for 1M smooth triangles, ~160 MB textured.
  */
 import type { Bvh, BvhMeshInput } from './build';
 
@@ -73,15 +82,19 @@ export const BVH_MAX_TEXELS = 2 ** 24;
 export const triangleTexel = (j: number): number => Math.floor(j / BVH_ROW_TRIANGLES) * BVH_TEXTURE_WIDTH + (j % BVH_ROW_TRIANGLES) * BVH_TRIANGLE_TEXELS;
 /** The triangle whose first texel is `texel`. */
 export const triangleAt = (texel: number): number => Math.floor(texel / BVH_TEXTURE_WIDTH) * BVH_ROW_TRIANGLES + Math.floor((texel % BVH_TEXTURE_WIDTH) / BVH_TRIANGLE_TEXELS);
-/** Where the normals start: the row after the triangles'. */
-const normalsStart = (triangles: number) => Math.max(1, Math.ceil(triangles / BVH_ROW_TRIANGLES)) * BVH_TEXTURE_WIDTH;
+/** Where the attribute blocks start: the row after the triangles'. */
+const attributesStart = (triangles: number) => Math.max(1, Math.ceil(triangles / BVH_ROW_TRIANGLES)) * BVH_TEXTURE_WIDTH;
 
-/** The documented total: the most triangles whose texels end below BVH_MAX_TEXELS when every one is smooth (3 texels, 3 of normals). */
+/** Texels of a triangle's attribute block: 3 of normals when smooth, 2 of texture coordinates when textured. */
+export const NORMAL_TEXELS = 3;
+export const UV_TEXELS = 2;
+
+/** The documented total: the most triangles whose texels end below BVH_MAX_TEXELS when every one is smooth and textured (3 texels, 3 of normals, 2 of uvs). */
 export const MAX_TRIANGLES = (() => {
-  let [lo, hi] = [0, Math.floor(BVH_MAX_TEXELS / 6)];
+  let [lo, hi] = [0, Math.floor(BVH_MAX_TEXELS / 8)];
   while (lo < hi) {
     const mid = Math.ceil((lo + hi) / 2);
-    if (normalsStart(mid) + 3 * mid <= BVH_MAX_TEXELS) lo = mid;
+    if (attributesStart(mid) + (NORMAL_TEXELS + UV_TEXELS) * mid <= BVH_MAX_TEXELS) lo = mid;
     else hi = mid - 1;
   }
   return lo;
@@ -100,7 +113,7 @@ export interface LayeredTextureData extends TextureData {
 }
 
 export interface PackedBvh {
-  /** Nodes, triangles and normals in the layout above. */
+  /** Nodes, triangles and their attributes in the layout above. */
   texture: LayeredTextureData;
   /** Stored (interior) nodes, the root included. */
   nodeCount: number;
@@ -133,21 +146,21 @@ export interface BvhGroup {
 
 /**
  * Packs several BVHs into one texture: their triangles one after another
- * (group by group, BVH order within each), then every smooth triangle's
- * normals, then the nodes. The first group's root is BVH_ROOT_NODE; each
+ * (group by group, BVH order within each), then the attribute blocks
+ * (normals, texture coordinates), then the nodes. The first group's root is BVH_ROOT_NODE; each
  * group's root node is in `roots`.
  */
 export function packBvhGroups(groups: BvhGroup[]): PackedBvh {
   const firstTriangle = [0];
   groups.forEach((g, i) => firstTriangle.push(firstTriangle[i] + g.bvh.triangleOrder.length));
   const n = firstTriangle[groups.length];
-  const smoothCount = groups.reduce((sum, g) => sum + g.meshes.reduce((s, m) => s + (m.normals ? m.indices.length / 3 : 0), 0), 0);
-  const normalsEnd = normalsStart(n) + smoothCount * 3;
-  if (normalsEnd > BVH_MAX_TEXELS) {
-    throw new Error(`${n} triangles exceed the BVH texture limit (${MAX_TRIANGLES} smooth triangles in total)`);
+  const attributeTexels = groups.reduce((sum, g) => sum + g.meshes.reduce((s, m) => s + ((m.normals ? NORMAL_TEXELS : 0) + (m.uvs ? UV_TEXELS : 0)) * (m.indices.length / 3), 0), 0);
+  const attributesEnd = attributesStart(n) + attributeTexels;
+  if (attributesEnd > BVH_MAX_TEXELS) {
+    throw new Error(`${n} triangles exceed the BVH texture limit (${MAX_TRIANGLES} smooth textured triangles in total)`);
   }
-  // Stored nodes: the first group's root at BVH_ROOT_NODE, every other interior node (depth-first, group by group) from the first multiple of 4 texels after the normals.
-  const firstSlot = Math.ceil(normalsEnd / BVH_NODE_TEXELS);
+  // Stored nodes: the first group's root at BVH_ROOT_NODE, every other interior node (depth-first, group by group) from the first multiple of 4 texels after the attributes.
+  const firstSlot = Math.ceil(attributesEnd / BVH_NODE_TEXELS);
   let stored = 1;
   const slots = groups.map(({ bvh }, g) => {
     const slot = new Int32Array(bvh.nodeCount).fill(-1);
@@ -156,7 +169,7 @@ export function packBvhGroups(groups: BvhGroup[]): PackedBvh {
     for (let i = 1; i < bvh.nodeCount; i++) if (!(bvh.nodeData[i * 2 + 1] > 0)) slot[i] = firstSlot + stored++ - 1;
     return { slot, rootIsLeaf };
   });
-  const texture = bvhTexture(Math.max(normalsEnd, (firstSlot + stored - 1) * BVH_NODE_TEXELS));
+  const texture = bvhTexture(Math.max(attributesEnd, (firstSlot + stored - 1) * BVH_NODE_TEXELS));
   const out = texture.data;
 
   groups.forEach(({ bvh }, g) => {
@@ -182,7 +195,7 @@ export function packBvhGroups(groups: BvhGroup[]): PackedBvh {
   });
 
   const triangleOrder = new Uint32Array(n);
-  let normalTexel = normalsStart(n);
+  let attributeTexel = attributesStart(n);
   let firstInput = 0;
   groups.forEach(({ bvh, meshes }, g) => {
     const meshOf = new Uint32Array(meshes.length + 1); // first input triangle of each mesh
@@ -193,18 +206,21 @@ export function packBvhGroups(groups: BvhGroup[]): PackedBvh {
       const at = firstTriangle[g] + j;
       triangleOrder[at] = firstInput + id;
       mesh = findMesh(meshOf, id, mesh);
-      const { positions, normals, indices, material = 0 } = meshes[mesh];
+      const { positions, normals, uvs, indices, material = 0 } = meshes[mesh];
       const local = (id - meshOf[mesh]) * 3;
       const o = triangleTexel(at) * 4;
+      const uvTexel = attributeTexel + (normals ? NORMAL_TEXELS : 0);
       for (let c = 0; c < 3; c++) {
         const v = indices[local + c];
         for (let k = 0; k < 3; k++) out[o + c * 4 + k] = positions[v * 3 + k];
-        if (normals) for (let k = 0; k < 3; k++) out[normalTexel * 4 + c * 4 + k] = normals[v * 3 + k];
+        if (normals) for (let k = 0; k < 3; k++) out[attributeTexel * 4 + c * 4 + k] = normals[v * 3 + k];
+        if (uvs) for (let k = 0; k < 2; k++) out[uvTexel * 4 + c * 2 + k] = uvs[v * 2 + k];
       }
+      if (normals && uvs) out[attributeTexel * 4 + 3] = 1;
       out[o + 3] = material;
-      out[o + 7] = normals ? normalTexel : -1;
+      out[o + 7] = normals ? attributeTexel : uvs ? -2 - attributeTexel : -1;
       out[o + 11] = meshes[mesh].mesh ?? mesh;
-      if (normals) normalTexel += 3;
+      attributeTexel += (normals ? NORMAL_TEXELS : 0) + (uvs ? UV_TEXELS : 0);
     }
     firstInput += meshOf[meshes.length];
   });

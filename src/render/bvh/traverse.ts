@@ -166,3 +166,19 @@ export function bruteForce(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: num
   }
   return best;
 }
+
+/** The first texel of triangle j's corner texture coordinates (pack.ts: its attributes), or -1 when it has none. */
+export function uvTexel(tex: Float32Array, j: number): number {
+  const a = tex[triangleTexel(j) * 4 + 7];
+  if (a >= 0) return tex[a * 4 + 3] > 0 ? a + 3 : -1;
+  return a <= -2 ? -2 - a : -1;
+}
+
+/** The hit's texture coordinates, its corners' interpolated (bvh.glsl bvhSurface's uv); (0, 0) without. */
+export function hitUv(packed: PackedBvh, hit: BvhHit): [number, number] {
+  const tex = packed.texture.data;
+  const k = uvTexel(tex, hit.triangle);
+  if (k < 0) return [0, 0];
+  const b0 = 1 - hit.b1 - hit.b2;
+  return [0, 1].map((c) => b0 * tex[k * 4 + c] + hit.b1 * tex[k * 4 + 2 + c] + hit.b2 * tex[(k + 1) * 4 + c]) as [number, number];
+}

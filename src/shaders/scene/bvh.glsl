@@ -9,9 +9,11 @@
 //     child c is a leaf of the triangles at texels ref_c (first) .. end_c (after the last)
 //     when end_c > 0, else node ref_c.
 //   Triangle j (BVH order) = texels bvhTriangleTexel(j) .. + 2, 681 to a row (none straddles one):
-//     (v0.xyz, local material), (v1.xyz, normals texel or -1 if flat), (v2.xyz, mesh index);
+//     (v0.xyz, local material), (v1.xyz, attributes), (v2.xyz, mesh index);
 //     the material-table index is the mesh record's materialBase + local (scene/intersect.glsl);
-//     a smooth triangle's vertex normals n0 n1 n2 at its normals texel .. +2.
+//     attributes (read by bvhSurface only): -1 none; a >= 0 smooth, vertex normals n0 n1 n2
+//     at a .. a + 2 and, when n0.w is 1, corner uvs at a + 3, a + 4; -2 - a flat with corner
+//     uvs at a, a + 1. Corner uvs: (u0, v0, u1, v1), (u2, v2, 0, 0).
 //
 // Traversal, shaped for SwiftShader: it runs a pixel quad's 4 lanes in lock
 // step through everything in the loop body, whatever each lane does (both
@@ -68,6 +70,7 @@ struct BvhSurface {
   vec3 position;
   vec3 geometricNormal; // unit, from the counter-clockwise winding v0 v1 v2
   vec3 shadingNormal;   // interpolated vertex normal (smooth), else the geometric normal
+  vec2 uv;              // interpolated corner texture coordinates, (0, 0) without
   int localMaterial;  // among the mesh's own: the table's is its MeshRecord.materialBase + this
   int mesh;
 };
@@ -257,9 +260,13 @@ BvhSurface bvhSurface(BvhHit hit, mat3 normalMatrix) {
 #endif
   s.geometricNormal = normalize(faceNormal);
   s.shadingNormal = s.geometricNormal;
+  int attributes = int(t1.w);
+  bool textured = attributes <= -2;
   if (t1.w >= 0.0) {
     int k = int(t1.w);
-    vec3 n0 = bvhTexel(uBvh, k).xyz, n1 = bvhTexel(uBvh, k + 1).xyz, n2 = bvhTexel(uBvh, k + 2).xyz;
+    vec4 first = bvhTexel(uBvh, k);
+    textured = first.w > 0.0;
+    vec3 n0 = first.xyz, n1 = bvhTexel(uBvh, k + 1).xyz, n2 = bvhTexel(uBvh, k + 2).xyz;
 #if HAS_INSTANCES
     n0 = bvhUnitOrZero(normalMatrix * n0);
     n1 = bvhUnitOrZero(normalMatrix * n1);
@@ -268,6 +275,14 @@ BvhSurface bvhSurface(BvhHit hit, mat3 normalMatrix) {
     vec3 n = b.x * n0 + b.y * n1 + b.z * n2;
     // Opposite vertex normals can cancel: keep the face normal then.
     if (dot(n, n) > 1e-12) s.shadingNormal = normalize(n);
+  }
+  // Per-corner data in the triangle's own space: an instance's transform leaves them alone.
+  s.uv = vec2(0.0);
+  if (textured) {
+    int k = attributes >= 0 ? attributes + 3 : -2 - attributes;
+    vec4 uv01 = bvhTexel(uBvh, k);
+    vec2 uv2 = bvhTexel(uBvh, k + 1).xy;
+    s.uv = b.x * uv01.xy + b.y * uv01.zw + b.z * uv2;
   }
   s.localMaterial = int(t0.w);
   s.mesh = int(t2.w);

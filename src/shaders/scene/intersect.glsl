@@ -16,6 +16,8 @@ struct Hit {
   vec3 position;
   vec3 normal;      // shading normal, on the outside of the surface: it decides the side
   vec3 geometricNormal;  // offsets spawned rays (equal to `normal` but on smooth meshes)
+  vec2 uv;          // texture coordinates: triangles' interpolated from their corners ((0, 0)
+                    // without), the ground's world (x, z), spheres' (0, 0)
   float scale;      // size of the hit object, for the self-intersection offset
   vec4 geometry;    // the sphere hit: [center, radius]
   int material;     // index into the material table
@@ -89,6 +91,7 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   hit.material = isGround ? groundMaterial() : record.material;
   hit.emitterPdf = isGround ? 0.0 : record.emitterPdf;
   hit.geometricNormal = hit.normal;
+  hit.uv = isGround ? groundPosition.xz : vec2(0.0);
 #if HAS_MESHES
   MeshHit triangle;
   if (meshClosestHit(origin, direction, hit.t, triangle)) {
@@ -98,6 +101,7 @@ Hit intersectScene(vec3 origin, vec3 direction) {
     hit.position = s.position;
     hit.normal = s.shadingNormal;
     hit.geometricNormal = s.geometricNormal;
+    hit.uv = s.uv;
     hit.scale = 0.0;
     MeshRecord mesh = loadMesh(s.mesh);
     hit.material = mesh.materialBase + s.localMaterial;
