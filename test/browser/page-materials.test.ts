@@ -59,6 +59,13 @@ async function switchType(page: Page, type: string): Promise<number> {
   }, type);
 }
 
+/** Picks an option of the selection folder's `name` dropdown, as a user does. */
+async function choose(page: Page, name: string, option: string): Promise<void> {
+  const select = control(page, name).locator('select');
+  await select.waitFor();
+  await select.selectOption({ label: option });
+}
+
 /** The page's sRGB -> linear conversion may differ from Node's in the last bit (Math.pow). */
 function expectColor(actual: unknown, hex: string): void {
   const expected = hexToLinear(hex);
@@ -167,6 +174,31 @@ describe('the page edits version-2 materials', () => {
     await switchType(page, 'dielectric');
     await control(page, 'ior').waitFor();
     expect((await savedSpheres(page))[3].material).toEqual({ type: 'dielectric', color: [1, 1, 1], roughness: 0, ior: 2.4 });
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('makes a sphere a metal from the picker, saves version 3, keeps eta and k as "custom"; back to standard is version 1', async () => {
+    const { page, errors } = await openPage(harness());
+    await selectSphere(page, 1);
+    await switchType(page, 'conductor');
+    await control(page, 'metal').waitFor();
+    expect(await labels(page)).toEqual(['material', 'metal', 'tint', 'roughness', 'emission color', 'emission intensity', 'radius', 'Delete']);
+    const saved = await savedScene(page);
+    expect(saved.version).toBe(3);
+    expect(((saved.spheres as SavedSphere[])[1]).material).toMatchObject({ type: 'conductor', metal: 'Al', color: [1, 1, 1] });
+    await choose(page, 'metal', 'Au');
+    expect((await savedSpheres(page))[1].material).toMatchObject({ type: 'conductor', metal: 'Au' });
+    // "custom": the metal's eta and k, written out, editable in the file.
+    await choose(page, 'metal', 'custom');
+    const custom = (await savedSpheres(page))[1].material;
+    expect(custom).not.toHaveProperty('metal');
+    expect((custom.eta as number[])[0]).toBeCloseTo(0.143036, 5);
+    expect((custom.k as number[])[0]).toBeCloseTo(3.982997, 5);
+    await waitForSpp(page, (await spp(page)) + 2);
+    await switchType(page, 'standard');
+    await control(page, 'color').waitFor();
+    expect(await savedScene(page)).toEqual(seedJson);
     expect(errors).toEqual([]);
     await page.close();
   });
