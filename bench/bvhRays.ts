@@ -9,7 +9,7 @@
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { readSceneFiles } from '../src/node/sceneFiles';
-import { bvhInputs } from '../src/render/passes/assetTextures';
+import { bvhInputs } from '../src/render/geometry/world';
 import { buildBvh } from '../src/render/bvh/build';
 import { packBvh, triangleTexel, type PackedBvh } from '../src/render/bvh/pack';
 import { traverseBvh, type Vec3 } from '../src/render/bvh/traverse';

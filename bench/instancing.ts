@@ -13,7 +13,7 @@
 import { readFileSync } from 'node:fs';
 import { buildAndPackGroups } from '../src/render/bvh/worker';
 import { MAX_TRIANGLES } from '../src/render/bvh/pack';
-import { bvhInputs } from '../src/render/passes/assetTextures';
+import { bvhInputs } from '../src/render/geometry/world';
 import { openRenderSession, type RenderSession } from '../src/node/session';
 import { decodeMesh } from '../src/scene/mesh';
 import { parseScene } from '../src/scene/schema';

@@ -7,7 +7,6 @@
 import { AssetError } from '../scene/assetError';
 import { buildEnvironmentDistribution, decodeEnvironmentMap, type EnvironmentDistribution } from '../scene/envmap';
 import type { EnvironmentImage } from '../scene/types';
-import { rememberEnvironmentDistribution } from '../render/passes/assetTextures';
 
 export interface MapWorkerRequest {
   id: number;
@@ -78,7 +77,7 @@ export async function decodeMap(bytes: Uint8Array, name: string): Promise<Enviro
   if (!target) {
     const image = decodeEnvironmentMap(bytes, name);
     const decoded = performance.now();
-    rememberEnvironmentDistribution(image, buildEnvironmentDistribution(image));
+    image.distribution = buildEnvironmentDistribution(image);
     const end = performance.now();
     record({ name, width: image.width, height: image.height, decodeMs: decoded - start, distributionMs: end - decoded, totalMs: end - start, offMainThread: false });
     return image;
@@ -90,7 +89,7 @@ export async function decodeMap(bytes: Uint8Array, name: string): Promise<Enviro
     target.postMessage({ id, bytes: copy, name } satisfies MapWorkerRequest, [copy]);
   });
   if (!reply.ok) throw reply.assetError ? new AssetError(reply.message) : new Error(reply.message);
-  rememberEnvironmentDistribution(reply.image, reply.distribution);
+  reply.image.distribution = reply.distribution;
   const { width, height } = reply.image;
   record({ name, width, height, decodeMs: reply.decodeMs, distributionMs: reply.distributionMs, totalMs: performance.now() - start, offMainThread: true });
   return reply.image;

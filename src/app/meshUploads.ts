@@ -5,14 +5,14 @@
  * lights and the ground never rebuild it); the page
  * instead builds it in the
  * BVH worker (buildBvhAsync) and uploads the scene when it is ready, handing
- * the renderer the result (offerBvh). Until then the image keeps showing the
+ * the renderer the result (setScene's `bvh`). Until then the image keeps showing the
  * scene as last uploaded; edits made meanwhile are coalesced: when a build
  * finishes, the latest scene is uploaded (or built for, if its meshes moved
  * again). Scenes without meshes upload at once.
  */
 import { groupMeshes, trianglesIn } from '../render/bvh/groups';
 import { buildBvhAsync } from '../render/bvh/buildAsync';
-import { bvhInputs, offerBvh } from '../render/passes/assetTextures';
+import { bvhInputs, prebuiltBvh, type PrebuiltBvh } from '../render/geometry/world';
 import type { PathTracer } from '../render/PathTracer';
 import type { SceneAssets } from '../scene/assets';
 import type { Scene, TriangleMesh } from '../scene/types';
@@ -57,8 +57,8 @@ function meshState(scene: Scene, assets: SceneAssets): MeshState {
 export class MeshUploads {
   private uploadedKey: string;
   private building: string | null = null;
-  /** The meshes whose BVH was built and offered to the renderer (offerBvh), not yet uploaded. */
-  private builtKey: string | null = null;
+  /** The BVH built in the worker for the meshes of state `key`, not yet uploaded. */
+  private built: { key: string; bvh: PrebuiltBvh } | null = null;
   /** Milliseconds of the last worker build, for the page's statistics and tests. */
   lastBuildMs = 0;
 
@@ -80,12 +80,13 @@ export class MeshUploads {
   upload(): void {
     const { scene, assets } = this.current();
     const state = meshState(scene, assets);
-    if (state.key === this.uploadedKey || state.key === this.builtKey || state.triangles <= ASYNC_BUILD_TRIANGLES) {
+    if (state.key === this.uploadedKey || state.key === this.built?.key || state.triangles <= ASYNC_BUILD_TRIANGLES) {
+      const bvh = state.key === this.built?.key ? this.built.bvh : undefined;
       this.uploadedKey = state.key;
-      this.builtKey = null;
+      this.built = null;
       // A copy: the tracer re-uploads its scene on a resize, and the page's
       // scene may by then hold edits whose BVH is still being built.
-      this.tracer.setScene(structuredClone(scene), assets);
+      this.tracer.setScene(structuredClone(scene), assets, { bvh });
       showState(this.building ? 'building' : 'ready');
       return;
     }
@@ -101,13 +102,13 @@ export class MeshUploads {
    * the BVH as built (the meshes' materials, spheres, lights and the ground
    * always do). upload() then builds for the latest.
    */
-  private showBuilt(snapshot: Scene, key: string): void {
+  private showBuilt(snapshot: Scene, key: string, bvh: PrebuiltBvh): void {
     const { scene, assets } = this.current();
     if (meshState(scene, assets).key === key) return; // upload() takes it
     const mixed = { ...structuredClone(scene), meshes: snapshot.meshes };
     this.uploadedKey = key;
-    this.builtKey = null;
-    this.tracer.setScene(meshState(mixed, assets).key === key ? mixed : snapshot, assets);
+    this.built = null;
+    this.tracer.setScene(meshState(mixed, assets).key === key ? mixed : snapshot, assets, { bvh });
   }
 
   private build(snapshot: Scene, assets: SceneAssets, state: MeshState): void {
@@ -118,10 +119,10 @@ export class MeshUploads {
       (packed) => {
         this.lastBuildMs = performance.now() - started;
         if (typeof document !== 'undefined') document.body.dataset.meshBuildMs = this.lastBuildMs.toFixed(0);
-        offerBvh(snapshot, assets, packed);
+        const bvh = prebuiltBvh(snapshot, assets, packed);
         this.building = null;
-        this.builtKey = state.key;
-        this.showBuilt(snapshot, state.key);
+        this.built = { key: state.key, bvh };
+        this.showBuilt(snapshot, state.key, bvh);
         this.upload();
       },
       (error: Error) => {

@@ -21,6 +21,7 @@ import { FloatTarget, PingPong } from './gl/targets';
 import { AovPass } from './passes/aov';
 import { DisplayPass, type DisplayOptions } from './passes/display';
 import { TracePass } from './passes/trace';
+import type { PrebuiltBvh } from './geometry/world';
 import type { SamplerKind } from './sampling';
 import { TileLayout, type TileRun } from './tiles';
 
@@ -187,11 +188,14 @@ export class PathTracer {
    * Replaces the scene (re-upload only; a scene that uses a feature no
    * earlier scene used compiles its program variant once) and restarts
    * accumulation. `assets` holds the files it names; without it the current
-   * ones are kept. Throws SceneError, changing nothing, when a file the scene
-   * names is not in the assets.
+   * ones are kept. `options.bvh`: the meshes' BVH built ahead (in a worker:
+   * prebuiltBvh over buildBvhAsync(bvhInputs(scene, assets))), used instead
+   * of building it on this thread when it fits the scene's meshes. Throws
+   * SceneError, changing nothing, when a file the scene names is not in the
+   * assets.
    */
-  setScene(scene: Scene, assets: SceneAssets = this.assets): void {
-    this.resources?.trace.setScene(scene, assets, this.size.width, this.size.height);
+  setScene(scene: Scene, assets: SceneAssets = this.assets, options: { bvh?: PrebuiltBvh } = {}): void {
+    this.resources?.trace.setScene(scene, assets, this.size.width, this.size.height, options.bvh);
     this.scene = scene;
     this.assets = assets;
     this.reset();

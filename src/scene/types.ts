@@ -14,6 +14,7 @@ export interface Emission {
 /** A material of any kind (src/materials/: one folder per kind, listed by the registry). */
 export type { Material, MaterialType } from '../materials/registry';
 import type { Material } from '../materials/registry';
+import type { EnvironmentDistribution } from './envmap/distribution';
 
 export interface Camera {
   position: Vec3;
@@ -109,6 +110,12 @@ export interface EnvironmentImage {
   width: number;
   height: number;
   rgb: Float32Array;
+  /**
+   * Its sampling distribution (src/scene/envmap/distribution.ts), when the
+   * decoder built it (the page's map worker does, off the main thread);
+   * otherwise the renderer builds it once and keeps it here.
+   */
+  distribution?: EnvironmentDistribution;
 }
 
 /**

@@ -13,7 +13,7 @@ import { buildBvh, type BvhMeshInput } from '../../src/render/bvh/build';
 import { BVH_NODE_TEXELS, packBvh, packBvhGroups, triangleAt, type PackedBvh } from '../../src/render/bvh/pack';
 import { bruteForce, traverseBvh, type Vec3 } from '../../src/render/bvh/traverse';
 import { buildAndPackGroups } from '../../src/render/bvh/worker';
-import { bvhInputs } from '../../src/render/passes/assetTextures';
+import { bvhInputs } from '../../src/render/geometry/world';
 import { decodeMesh, meshToWorldMatrix, transformMesh, type MeshTransform } from '../../src/scene/mesh';
 import type { Material, Mesh, Scene, TriangleMesh } from '../../src/scene/types';
 import { parseSceneText } from '../../src/scene/schema';

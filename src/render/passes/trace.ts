@@ -8,6 +8,7 @@ import { missingAssets, type SceneAssets } from '../../scene/assets';
 import { SceneError } from '../../scene/schema';
 import { BLOCK_VEC4S, DATA_ROWS, SCENE_ROW_TEXELS } from '../layout/scene';
 import { AssetTextures, environmentDistribution } from './assetTextures';
+import { prepareWorldMeshes, type PrebuiltBvh, type WorldMeshes } from '../geometry/world';
 import { BASE_FEATURES, packScene, type SceneFeatures } from '../packScene';
 import type { SamplerKind } from '../sampling';
 import { featureDefines, sceneDefines } from '../shaderChunks';
@@ -58,6 +59,8 @@ export class TracePass {
   private readonly sceneTexture: WebGLTexture;
 
   private readonly defines: Record<string, string | number>;
+  /** The meshes prepared for the last scene (kept: the next keeps its copies where they still fit). */
+  private world: WorldMeshes | null = null;
   /** The scene's decoded files on the GPU (environment map). */
   private readonly assets: AssetTextures;
   /** What setScene last uploaded: other passes built from the scene chunks need its camera and features. */
@@ -100,16 +103,16 @@ export class TracePass {
    * block, camera to uniforms; the files it names from `assets` (uploaded
    * only when they change). Throws SceneError when a file is not in `assets`.
    */
-  setScene(scene: Scene, assets: SceneAssets, width: number, height: number): void {
+  setScene(scene: Scene, assets: SceneAssets, width: number, height: number, bvh?: PrebuiltBvh): void {
     const gl = this.gl;
     const missing = missingAssets(scene, assets);
     if (missing.length > 0) throw new SceneError(missing);
     const map = scene.environment && 'map' in scene.environment ? assets.maps.get(scene.environment.map)! : null;
     this.assets.setEnvironmentMap(map);
-    const world = this.assets.worldMeshes(scene, assets);
+    const world = (this.world = prepareWorldMeshes(scene, assets, this.world));
     const environmentIntegral = map ? environmentDistribution(map).integral : undefined;
     const packed = packScene(scene, { environmentIntegral, meshes: world.sizes, groups: world.groups });
-    this.assets.setMeshes(world, packed.meshEmitters);
+    this.assets.setMeshes(world, packed.meshEmitters, bvh);
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
     gl.bufferSubData(gl.UNIFORM_BUFFER, 0, packed.block);
     gl.bindBuffer(gl.UNIFORM_BUFFER, null);
