@@ -64,19 +64,33 @@ export async function renderCommand(sceneFile: string, raw: RawRenderOptions, ct
   const args = parseRenderArgs(raw, ctx.session.TONEMAPS);
   const scene = await loadSceneFile(sceneFile);
   mark('scene parsed');
-  const { assets } = await loadSceneFiles(sceneFile, scene);
-  mark('scene files read');
   const { width, height } = resolveSize(scene.image, args);
   const pngPath = raw.output ?? defaultPngPath(sceneFile, ctx.cwd);
   const hdrPath = raw.hdr;
-  await checkOutputs(pngPath, hdrPath, args.aov);
+  // The files the scene names are read and decoded while Chromium starts
+  // (its start-up is mostly other processes'). Their problems still come
+  // first: before a bad output path's, and before any session error.
+  let assetsLoading: Promise<SceneAssets> | undefined;
+  const loadAssets = () =>
+    (assetsLoading ??= loadSceneFiles(sceneFile, scene).then(({ assets }) => {
+      mark('scene files read');
+      return assets;
+    }));
+  const assetsFirst = async (error: unknown): Promise<never> => {
+    if (!(error instanceof CliError && error.exitCode === EXIT_INTERRUPTED)) await loadAssets();
+    throw error;
+  };
+  await checkOutputs(pngPath, hdrPath, args.aov).catch(assetsFirst);
 
   const progress = createProgress(ctx.stderr, args.budget, width * height);
   const now = ctx.now ?? (() => performance.now() / 1000);
   try {
-    const result = await withSession(ctx.session, progress, (session) =>
-      renderImages(session, scene, assets, args, { width, height }, progress, now, hdrPath !== undefined),
-    );
+    const result = await withSession(
+      ctx.session,
+      progress,
+      async (session) => renderImages(session, scene, await loadAssets(), args, { width, height }, progress, now, hdrPath !== undefined),
+      loadAssets,
+    ).catch(assetsFirst);
     progress.stop();
     const outputs: { path: string; data: Uint8Array }[] = [{ path: pngPath, data: encodePng(width, height, result.displayed) }];
     if (hdrPath !== undefined && result.linear) outputs.push({ path: hdrPath, data: encodePfm(width, height, result.linear) });
@@ -110,22 +124,31 @@ async function checkOutputs(pngPath: string, hdrPath: string | undefined, aov: A
 }
 
 /**
- * Opens a session, runs `work`, and always closes it. Ctrl-C (or SIGTERM) at
+ * Opens a session, runs `work`, and always closes it; `meanwhile` runs while
+ * Chromium starts, and its failure (a CliError) ends the wait as Ctrl-C does.
+ * Ctrl-C (or SIGTERM) at
  * any point, Chromium's start-up included, ends with exit code 130 after
  * Chromium is closed; Playwright's own signal handlers are off (session.ts).
  */
-async function withSession<T>(module: SessionModule, progress: Progress, work: (s: CliSession) => Promise<T>): Promise<T> {
+async function withSession<T>(
+  module: SessionModule,
+  progress: Progress,
+  work: (s: CliSession) => Promise<T>,
+  meanwhile?: () => Promise<unknown>,
+): Promise<T> {
   progress.status('starting Chromium...');
   const interrupted = interruption();
   const opening = module.openRenderSession();
   opening.then(() => mark('session open'), () => undefined);
+  const failed = meanwhile ? meanwhile().then(() => new Promise<never>(() => undefined)) : interrupted.promise;
+  failed.catch(() => undefined);
   let session: CliSession | undefined;
   try {
     try {
-      session = await Promise.race([opening, interrupted.promise]);
+      session = await Promise.race([opening, interrupted.promise, failed]);
     } catch (error) {
       if (error instanceof CliError) {
-        // Interrupted while Chromium starts: close it once it is up.
+        // Interrupted (or a bad file found) while Chromium starts: close it once it is up.
         opening.then((s) => s.close()).catch(() => undefined);
         throw error;
       }

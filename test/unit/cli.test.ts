@@ -368,7 +368,7 @@ describe('files the scene names', () => {
     expect(assets!.maps.size).toBe(1);
   });
 
-  it('a bad mesh and a missing map: exit 2, one line each naming the field, before Chromium starts', async () => {
+  it('a bad mesh and a missing map: exit 2, one line each naming the field; a session opened meanwhile is closed', async () => {
     writeFileSync(join(dir, 'empty.obj'), 'v 0 0 0\n');
     writeFileSync(join(dir, 'bad.json'), meshScene('empty.obj', 'missing.exr'));
     const { code, stderr, log } = await cli(['render', join(dir, 'bad.json')]);
@@ -376,7 +376,19 @@ describe('files the scene names', () => {
     expect(stderr.lines).toHaveLength(2);
     expect(stderr.lines.some((line) => line.startsWith('environment.map: "missing.exr"'))).toBe(true);
     expect(stderr.lines.some((line) => line.startsWith('meshes[0].file: "empty.obj"'))).toBe(true);
-    expect(log.opened).toBe(0);
+    expect(log.loads).toEqual([]);
+    expect(log.closed).toBe(log.opened);
+  });
+
+  it('a bad file is reported before a bad output path and before a session that cannot start', async () => {
+    writeFileSync(join(dir, 'bad.json'), meshScene('missing.obj', 'missing.exr'));
+    const badOutput = await cli(['render', join(dir, 'bad.json'), '-o', join(dir, 'no', 'such', 'dir.png')]);
+    expect(badOutput.code).toBe(2);
+    expect(badOutput.stderr.lines).toHaveLength(2);
+    expect(badOutput.stderr.lines.every((line) => /^(environment\.map|meshes\[0\]\.file): /.test(line))).toBe(true);
+    const noChromium = await cli(['render', join(dir, 'bad.json')], { fake: fakeSessionModule({ openError: new Error('no Chromium') }) });
+    expect(noChromium.code).toBe(2);
+    expect(noChromium.stderr.lines).toHaveLength(2);
   });
 });
 
