@@ -138,10 +138,13 @@ async function withSession<T>(
 ): Promise<T> {
   progress.status('starting Chromium...');
   const interrupted = interruption();
-  const opening = module.openRenderSession();
+  const abort = new AbortController();
+  const opening = module.openRenderSession({ signal: abort.signal });
   opening.then(() => mark('session open'), () => undefined);
-  const failed = meanwhile ? meanwhile().then(() => new Promise<never>(() => undefined)) : interrupted.promise;
-  failed.catch(() => undefined);
+  const never = new Promise<never>(() => undefined);
+  const failed = meanwhile ? meanwhile().then(() => never) : never;
+  // A bad file stops Chromium's start-up at its next step (after Ctrl-C it completes, then closes).
+  failed.catch(() => abort.abort(new Error('a file the scene names is unusable')));
   let session: CliSession | undefined;
   try {
     try {

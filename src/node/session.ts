@@ -68,6 +68,12 @@ export interface SessionOptions {
   chromiumPath?: string;
   /** The built page to drive (default: dist/web); benchmarks point it at another build to compare. */
   webRoot?: string;
+  /**
+   * Gives up opening: once aborted, the next step (after Chromium's launch,
+   * the new page, the page load) closes what is open and rejects with the
+   * signal's reason. The CLI aborts when a file the scene names is bad.
+   */
+  signal?: AbortSignal;
 }
 
 export interface RenderSession {
@@ -171,16 +177,21 @@ export async function openRenderSession(options: SessionOptions = {}): Promise<R
   chromiumPath(options); // fail before starting the server when Chromium is missing
   const server: StaticServer = await serveDirectory(root);
   let browser: Browser | undefined;
+  const { signal } = options;
   try {
     mark('server up');
+    signal?.throwIfAborted();
     browser = await launchChromium(options);
     mark('chromium launched');
+    signal?.throwIfAborted();
     const page = await browser.newPage();
     mark('page opened');
+    signal?.throwIfAborted();
     const pageErrors: string[] = [];
     page.on('pageerror', (error) => pageErrors.push(error.message));
     await page.goto(`${server.url}headless.html`);
     mark('page loaded');
+    signal?.throwIfAborted();
     await page.waitForFunction(() => document.body.dataset.ready === 'true', undefined, { timeout: 30_000 });
     mark('page ready');
     return createSession(page, browser, server, pageErrors);

@@ -76,6 +76,28 @@ describe('bad input: exit 2, one line naming the file and the field', () => {
     expect(result.stderr).not.toMatch(/^\s+at /m);
   }, TIMEOUT);
 
+  it('a bad mesh and a bad map: one line each naming the field, exit 2, no output, no Chromium left', async () => {
+    const where = outDir();
+    writeFileSync(join(where, 'garbage.ply'), 'ply\nthis is not a mesh\n');
+    writeFileSync(join(where, 'bad.exr'), 'not an EXR');
+    const scene = {
+      version: 2,
+      camera: { position: [0, 1, 4], target: [0, 0.5, 0] },
+      image: { width: 16, height: 12 },
+      environment: { map: 'bad.exr' },
+      meshes: [{ file: 'garbage.ply' }, { file: 'missing.obj' }],
+    };
+    writeFileSync(join(where, 'scene.json'), JSON.stringify(scene));
+    for (const command of ['render', 'validate']) {
+      const result = await pathtrace([command, join(where, 'scene.json'), ...(command === 'render' ? ['-o', join(where, 'x.png')] : [])]);
+      expect(result.code, result.stderr).toBe(2);
+      const lines = result.stderr.split('\n').filter((line) => line !== '');
+      expect(lines.map((line) => line.split(':')[0]).sort(), result.stderr).toEqual(['environment.map', 'meshes[0].file', 'meshes[1].file']);
+      expect(result.stderr).not.toMatch(/^\s+at |Error:/m);
+    }
+    expect(strays(where, ['garbage.ply', 'bad.exr', 'scene.json'])).toEqual([]);
+  }, TIMEOUT);
+
   it('a scene over 1 MB, and a scene that is not an object', async () => {
     const big = join(dir, 'big.json');
     writeFileSync(big, `{"camera":{"position":[0,1,5],"target":[0,0,0]}}${' '.repeat(1_000_001)}`);

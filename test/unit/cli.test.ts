@@ -48,6 +48,7 @@ function fakeSessionModule(options: FakeOptions = {}) {
     closed: 0,
     loads: [] as { scene: Scene; options: LoadOptions; files?: Record<string, Uint8Array>; assets?: SceneAssets }[],
     outputRequests: [] as OutputsRequest[],
+    signals: [] as (AbortSignal | undefined)[],
     renders: [] as number[],
     displayed: [] as { exposure: number; toneMap: string }[],
     linearReads: 0,
@@ -57,8 +58,9 @@ function fakeSessionModule(options: FakeOptions = {}) {
   const now = () => clock;
   const module: SessionModule = {
     TONEMAPS: ['none', 'aces', 'agx', 'neutral'],
-    async openRenderSession() {
+    async openRenderSession(sessionOptions) {
       log.opened++;
+      log.signals.push(sessionOptions?.signal);
       if (options.openError) throw options.openError;
       let size: LoadOptions = { width: 0, height: 0, seed: 0 };
       let total = 0;
@@ -378,6 +380,8 @@ describe('files the scene names', () => {
     expect(stderr.lines.some((line) => line.startsWith('meshes[0].file: "empty.obj"'))).toBe(true);
     expect(log.loads).toEqual([]);
     expect(log.closed).toBe(log.opened);
+    // Chromium's start-up is told to stop.
+    expect(log.signals.map((signal) => signal?.aborted)).toEqual([true]);
   });
 
   it('a bad file is reported before a bad output path and before a session that cannot start', async () => {
