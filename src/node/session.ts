@@ -192,7 +192,11 @@ export async function openRenderSession(options: SessionOptions = {}): Promise<R
     await page.goto(`${server.url}headless.html`);
     mark('page loaded');
     signal?.throwIfAborted();
-    await page.waitForFunction(() => document.body.dataset.ready === 'true', undefined, { timeout: 30_000 });
+    // The page is ready at its load event (its module has run): one evaluate
+    // says so without waitForFunction's polling machinery (Playwright's
+    // injected script, compiled in the page first).
+    const ready = await page.evaluate(() => document.body.dataset.ready === 'true');
+    if (!ready) await page.waitForFunction(() => document.body.dataset.ready === 'true', undefined, { timeout: 30_000 });
     mark('page ready');
     return createSession(page, browser, server, pageErrors);
   } catch (error) {
