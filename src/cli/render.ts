@@ -7,6 +7,7 @@
  */
 import { resolve } from 'node:path';
 import type { RenderSession, SessionOptions } from '../node/session';
+import type { SceneAssets } from '../scene/assets';
 import type { Scene } from '../scene/types';
 import { parseRenderArgs, resolveSize, type AovPaths, type Budget, type RawRenderOptions, type RenderArgs } from './args';
 import { CliError, EXIT_INTERRUPTED, failure, firstLine, oneLine, usageError } from './errors';
@@ -16,9 +17,16 @@ import { denoiseFinalImage, readGuides, type DenoiseSession, type Guides } from 
 import { encodePng } from './png';
 import { createProgress, formatRate, type Progress, type ProgressStream } from './progress';
 import { loadSceneFile, loadSceneFiles } from './validate';
+import { mark } from '../node/timing';
 
-/** The part of a RenderSession the CLI uses (the denoiser's part only with --denoise). */
-export type CliSession = Pick<RenderSession, 'load' | 'render' | 'readLinear' | 'readDisplayed' | 'close'> & Partial<DenoiseSession>;
+/**
+ * The part of a RenderSession the CLI uses: readOutputs when the page has it
+ * (every image crosses from the page once), else the separate reads (the
+ * denoiser's part only with --denoise).
+ */
+export type CliSession = Pick<RenderSession, 'load' | 'render' | 'readLinear' | 'readDisplayed' | 'close'> &
+  Partial<DenoiseSession> &
+  Partial<Pick<RenderSession, 'readOutputs'>>;
 
 /** What render needs from src/node/session.ts; injected in tests. */
 export interface SessionModule {
@@ -52,20 +60,37 @@ export interface RenderOutcome {
 }
 
 export async function renderCommand(sceneFile: string, raw: RawRenderOptions, ctx: RenderContext): Promise<RenderOutcome> {
+  mark('render command');
   const args = parseRenderArgs(raw, ctx.session.TONEMAPS);
   const scene = await loadSceneFile(sceneFile);
-  const { files: sceneFiles } = await loadSceneFiles(sceneFile, scene);
+  mark('scene parsed');
   const { width, height } = resolveSize(scene.image, args);
   const pngPath = raw.output ?? defaultPngPath(sceneFile, ctx.cwd);
   const hdrPath = raw.hdr;
-  await checkOutputs(pngPath, hdrPath, args.aov);
+  // The files the scene names are read and decoded while Chromium starts
+  // (its start-up is mostly other processes'). Their problems still come
+  // first: before a bad output path's, and before any session error.
+  let assetsLoading: Promise<SceneAssets> | undefined;
+  const loadAssets = () =>
+    (assetsLoading ??= loadSceneFiles(sceneFile, scene).then(({ assets }) => {
+      mark('scene files read');
+      return assets;
+    }));
+  const assetsFirst = async (error: unknown): Promise<never> => {
+    if (!(error instanceof CliError && error.exitCode === EXIT_INTERRUPTED)) await loadAssets();
+    throw error;
+  };
+  await checkOutputs(pngPath, hdrPath, args.aov).catch(assetsFirst);
 
   const progress = createProgress(ctx.stderr, args.budget, width * height);
   const now = ctx.now ?? (() => performance.now() / 1000);
   try {
-    const result = await withSession(ctx.session, progress, (session) =>
-      renderImages(session, scene, sceneFiles, args, { width, height }, progress, now, hdrPath !== undefined),
-    );
+    const result = await withSession(
+      ctx.session,
+      progress,
+      async (session) => renderImages(session, scene, await loadAssets(), args, { width, height }, progress, now, hdrPath !== undefined),
+      loadAssets,
+    ).catch(assetsFirst);
     progress.stop();
     const outputs: { path: string; data: Uint8Array }[] = [{ path: pngPath, data: encodePng(width, height, result.displayed) }];
     if (hdrPath !== undefined && result.linear) outputs.push({ path: hdrPath, data: encodePfm(width, height, result.linear) });
@@ -73,7 +98,9 @@ export async function renderCommand(sceneFile: string, raw: RawRenderOptions, ct
       outputs.push({ path: args.aov.albedo, data: encodePfm(width, height, result.guides.albedo) });
       outputs.push({ path: args.aov.normal, data: encodePfm(width, height, result.guides.normal) });
     }
+    mark('images read back and encoded');
     await writeOutputs(outputs);
+    mark('outputs written');
     const outcome = { spp: result.spp, seconds: result.seconds, width, height, files: outputs.map((f) => f.path) };
     ctx.stderr.write(`${summaryLine(outcome)}\n`);
     return outcome;
@@ -97,21 +124,34 @@ async function checkOutputs(pngPath: string, hdrPath: string | undefined, aov: A
 }
 
 /**
- * Opens a session, runs `work`, and always closes it. Ctrl-C (or SIGTERM) at
+ * Opens a session, runs `work`, and always closes it; `meanwhile` runs while
+ * Chromium starts, and its failure (a CliError) ends the wait as Ctrl-C does.
+ * Ctrl-C (or SIGTERM) at
  * any point, Chromium's start-up included, ends with exit code 130 after
  * Chromium is closed; Playwright's own signal handlers are off (session.ts).
  */
-async function withSession<T>(module: SessionModule, progress: Progress, work: (s: CliSession) => Promise<T>): Promise<T> {
+async function withSession<T>(
+  module: SessionModule,
+  progress: Progress,
+  work: (s: CliSession) => Promise<T>,
+  meanwhile?: () => Promise<unknown>,
+): Promise<T> {
   progress.status('starting Chromium...');
   const interrupted = interruption();
-  const opening = module.openRenderSession();
+  const abort = new AbortController();
+  const opening = module.openRenderSession({ signal: abort.signal });
+  opening.then(() => mark('session open'), () => undefined);
+  const never = new Promise<never>(() => undefined);
+  const failed = meanwhile ? meanwhile().then(() => never) : never;
+  // A bad file stops Chromium's start-up at its next step (after Ctrl-C it completes, then closes).
+  failed.catch(() => abort.abort(new Error('a file the scene names is unusable')));
   let session: CliSession | undefined;
   try {
     try {
-      session = await Promise.race([opening, interrupted.promise]);
+      session = await Promise.race([opening, interrupted.promise, failed]);
     } catch (error) {
       if (error instanceof CliError) {
-        // Interrupted while Chromium starts: close it once it is up.
+        // Interrupted (or a bad file found) while Chromium starts: close it once it is up.
         opening.then((s) => s.close()).catch(() => undefined);
         throw error;
       }
@@ -129,6 +169,7 @@ async function withSession<T>(module: SessionModule, progress: Progress, work: (
   } finally {
     interrupted.dispose();
     await session?.close().catch(() => undefined);
+    mark('session closed');
   }
 }
 
@@ -162,7 +203,7 @@ interface RenderedImages {
 async function renderImages(
   session: CliSession,
   scene: Scene,
-  files: Record<string, Uint8Array>,
+  assets: SceneAssets,
   args: RenderArgs,
   size: { width: number; height: number },
   progress: Progress,
@@ -170,11 +211,29 @@ async function renderImages(
   wantLinear: boolean,
 ): Promise<RenderedImages> {
   progress.status('loading scene and compiling the shader...');
-  await session.load(scene, { width: size.width, height: size.height, seed: args.seed }, files);
+  // Decoded here already (loadSceneFiles): the page takes the arrays and does not decode the files again.
+  await session.load(scene, { width: size.width, height: size.height, seed: args.seed }, {}, assets);
+  mark('scene loaded in the page');
   progress.start();
   const { spp, seconds } = await renderBudget(session, args.budget, progress, now);
   progress.stop();
+  mark('rendered');
   const pixels = size.width * size.height;
+  const display = { exposure: args.exposure, toneMap: args.toneMap };
+  if (session.readOutputs) {
+    if (args.denoise) progress.status('denoising...');
+    else if (args.aov) progress.status('rendering the guide buffers...');
+    const out = await session.readOutputs({ ...size, display, linear: wantLinear, aovs: args.aov !== undefined, denoise: args.denoise });
+    checkLength('displayed image', out.displayed.length, pixels * 4);
+    if (wantLinear) checkLength('linear image', out.linear?.length ?? 0, pixels * 4);
+    let guides: Guides | undefined;
+    if (args.aov) {
+      guides = { albedo: out.albedo ?? new Float32Array(0), normal: out.normal ?? new Float32Array(0) };
+      checkLength('albedo guide', guides.albedo.length, pixels * 4);
+      checkLength('normal guide', guides.normal.length, pixels * 4);
+    }
+    return { displayed: out.displayed, linear: out.linear, guides, spp, seconds };
+  }
   let guides: Guides | undefined;
   if (args.aov) {
     progress.status('rendering the guide buffers...');

@@ -75,7 +75,7 @@ export async function loadSceneFile(file: string): Promise<Scene> {
 /**
  * Reads and decodes the files a scene names (maps, meshes), relative to the
  * scene file: every unusable file is a usage error (exit 2), one line each,
- * found before a browser starts.
+ * found before rendering starts (render does this while Chromium starts).
  */
 export async function loadSceneFiles(file: string, scene: Scene): Promise<SceneFiles> {
   try {

@@ -48,21 +48,32 @@ async function denoiserFor(options: DenoiseRequest['options'] = {}): Promise<Den
   return denoiser;
 }
 
-export async function denoiseArrays(request: DenoiseRequest): Promise<DenoiseResult> {
+/** Float32 RGBA rows, top to bottom, width*height*4 each: what denoiseImage takes. */
+export interface DenoiseImages {
+  width: number;
+  height: number;
+  color: Float32Array;
+  albedo: Float32Array;
+  normal: Float32Array;
+}
+
+/** Denoises arrays already in the page (readOutputs: the CLI's --denoise); the result as DenoiseResult, not encoded. */
+export async function denoiseImage(images: DenoiseImages, options?: DenoiseRequest['options']): Promise<Omit<DenoiseResult, 'data'> & { data: Float32Array }> {
   const setupStart = performance.now();
-  const denoiser = await denoiserFor(request.options);
+  const denoiser = await denoiserFor(options);
   const start = performance.now();
   const watch = watchMainThread();
-  const data = await denoiser.denoise({
-    width: request.width,
-    height: request.height,
-    color: fromBase64(request.color),
-    albedo: fromBase64(request.albedo),
-    normal: fromBase64(request.normal),
-  });
+  const data = await denoiser.denoise(images);
   const end = performance.now();
   const longestMainThreadGap = watch.stop();
-  return { data: toBase64(data), milliseconds: end - start, setupMilliseconds: start - setupStart, backend: denoiser.backend, longestMainThreadGap };
+  return { data, milliseconds: end - start, setupMilliseconds: start - setupStart, backend: denoiser.backend, longestMainThreadGap };
+}
+
+export async function denoiseArrays(request: DenoiseRequest): Promise<DenoiseResult> {
+  const { width, height } = request;
+  const images = { width, height, color: fromBase64(request.color), albedo: fromBase64(request.albedo), normal: fromBase64(request.normal) };
+  const result = await denoiseImage(images, request.options);
+  return { ...result, data: toBase64(result.data) };
 }
 
 export function fromBase64(text: string): Float32Array {
@@ -72,7 +83,7 @@ export function fromBase64(text: string): Float32Array {
   return new Float32Array(bytes.buffer);
 }
 
-function toBase64(data: Float32Array): string {
+export function toBase64(data: Float32Array): string {
   const bytes = new Uint8Array(data.buffer, data.byteOffset, data.byteLength);
   let binary = '';
   for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));

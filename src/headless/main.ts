@@ -6,7 +6,8 @@
 import { DEFAULT_PATHS_PER_DRAW, PathTracer } from '../render/PathTracer';
 import type { DisplayOptions } from '../render/passes/display';
 import type { SamplerKind } from '../render/sampling';
-import { loadSceneAssets } from '../scene/assets';
+import { loadSceneAssets, NO_ASSETS } from '../scene/assets';
+import { unpackAssets, type AssetManifest } from '../node/assetTransfer';
 import type { Scene } from '../scene/types';
 import { runKernel, type KernelRequest } from './kernels';
 // Registers window.pathtraceEnvironmentKernels (environment-map test kernels).
@@ -16,7 +17,7 @@ import { Program, ShaderCompileError } from '../render/gl/program';
 import { sceneDefines } from '../render/shaderChunks';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/shaderSources';
 import './bvhKernels'; // window.pathtraceBvh: the BVH traversal kernel for test/browser/bvh-*.test.ts
-import { denoiseArrays, fromBase64, type DenoiseRequest, type DenoiseResult } from './denoise';
+import { denoiseArrays, denoiseImage, fromBase64, type DenoiseRequest, type DenoiseResult } from './denoise';
 import { displayLinear } from './displayLinear';
 
 export interface LoadOptions {
@@ -29,11 +30,39 @@ export interface LoadOptions {
   aovs?: boolean;
 }
 
+/** What readOutputs returns, and for what. */
+export interface OutputRequest {
+  /** The image's size (the tracer's). */
+  width: number;
+  height: number;
+  display: DisplayOptions;
+  /** Return the linear image (denoised with `denoise`). */
+  linear: boolean;
+  /** Return the guides (albedo, normal). */
+  aovs: boolean;
+  /** Denoise the final image here (src/denoise with the tracer's guides); `displayed` and `linear` are then of the denoised image. */
+  denoise: boolean;
+}
+
+export interface OutputResult {
+  /** Base64 RGBA8 sRGB, as readDisplayed. */
+  displayed: string;
+  /** Base64 float32 RGBA, as readLinear; with `linear`. */
+  linear?: string;
+  /** Base64 float32 RGBA, as readAovs; with `aovs`. */
+  albedo?: string;
+  normal?: string;
+}
+
 export interface HeadlessApi {
   /** Capabilities of this browser, checked by every browser test first. */
   probe(): { webgl2: boolean; floatTargets: boolean; renderer: string };
-  /** `files`: the bytes (base64) of the files the scene names, by name as written; decoded here. */
-  load(scene: Scene, options: LoadOptions, files?: Record<string, string>): Promise<{ renderer: string }>;
+  /**
+   * `files`: the bytes (base64) of the files the scene names, by name as
+   * written; decoded here. `decoded`: files decoded already (by Node), as a
+   * block this page fetches from the session's server (src/node/assetTransfer.ts).
+   */
+  load(scene: Scene, options: LoadOptions, files?: Record<string, string>, decoded?: AssetManifest): Promise<{ renderer: string }>;
   /**
    * Renders `samples` more spp in draws of `samplesPerDraw` and at most
    * `pathsPerDraw` paths (PathTracer.pathsPerDraw; unchanged when omitted),
@@ -61,6 +90,13 @@ export interface HeadlessApi {
   denoise(request: DenoiseRequest): Promise<DenoiseResult>;
   /** A linear RGBA image (base64 float32) through the display pass: base64 RGBA8 sRGB. */
   displayLinear(linear: string, width: number, height: number, options: DisplayOptions): string;
+  /**
+   * The CLI's images in one call, each leaving the page once: with
+   * `denoise`, the linear image and the guides go to the denoiser and the
+   * display pass here, instead of through Node (readLinear, readAovs,
+   * denoise, displayLinear).
+   */
+  readOutputs(request: OutputRequest): Promise<OutputResult>;
 }
 
 let tracer: PathTracer | null = null;
@@ -99,6 +135,12 @@ function bytesFromBase64(text: string): Uint8Array {
   return bytes;
 }
 
+async function fetchBlock(url: string): Promise<ArrayBuffer> {
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`cannot fetch the decoded assets (${url}): HTTP ${response.status}`);
+  return response.arrayBuffer();
+}
+
 function toBase64(bytes: Uint8Array): string {
   let binary = '';
   const chunk = 0x8000;
@@ -116,11 +158,12 @@ const api: HeadlessApi = {
     const renderer = gl && debug ? String(gl.getParameter(debug.UNMASKED_RENDERER_WEBGL)) : '';
     return { webgl2: !!gl, floatTargets, renderer };
   },
-  async load(scene, options, files = {}) {
+  async load(scene, options, files = {}, decoded) {
+    const known = decoded ? unpackAssets(decoded, await fetchBlock(decoded.url)) : NO_ASSETS;
     const assets = await loadSceneAssets(scene, async (name) => {
       if (!(name in files)) throw new Error('no such file was given to the page');
       return bytesFromBase64(files[name]);
-    });
+    }, known);
     const kind = JSON.stringify([options.sampler ?? 'kronecker', options.russianRoulette ?? false]);
     if (!reuseTracer(scene, options, assets, kind)) {
       tracer?.dispose();
@@ -184,6 +227,29 @@ const api: HeadlessApi = {
   denoise: denoiseArrays,
   displayLinear(linear, width, height, options) {
     return toBase64(displayLinear(fromBase64(linear), width, height, options));
+  },
+  async readOutputs({ width, height, display, linear, aovs, denoise }) {
+    const t = requireTracer();
+    const floats = (data: Float32Array) => toBase64(new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
+    // The same calls in the same order as the CLI made them through Node.
+    let guides = aovs ? t.readAovs() : undefined;
+    const result: OutputResult = { displayed: '' };
+    if (guides) {
+      result.albedo = floats(guides.albedo);
+      result.normal = floats(guides.normal);
+    }
+    if (denoise) {
+      const color = t.readLinear();
+      guides ??= t.readAovs();
+      const { data } = await denoiseImage({ width, height, color, albedo: guides.albedo, normal: guides.normal });
+      if (data.length !== width * height * 4) throw new Error(`the denoiser returned ${data.length} values, expected ${width * height * 4}`);
+      result.displayed = toBase64(displayLinear(data, width, height, display));
+      if (linear) result.linear = floats(data);
+    } else {
+      result.displayed = toBase64(t.readDisplayed(display));
+      if (linear) result.linear = floats(t.readLinear());
+    }
+    return result;
   },
 };
 

@@ -10,7 +10,7 @@ import type { Scene } from '../scene/types';
 export interface SceneFiles {
   /** Bytes by name as written in the scene (what RenderSession.load takes). */
   files: Record<string, Uint8Array>;
-  /** The same files decoded: reading them here finds every bad file before a browser starts. */
+  /** The same files decoded: reading them here finds every bad file before rendering starts (the CLI does it while Chromium starts). */
   assets: SceneAssets;
 }
 

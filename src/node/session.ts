@@ -8,14 +8,20 @@ import { fileURLToPath } from 'node:url';
 import { chromium, type Browser, type Page } from 'playwright-core';
 import type { DisplayOptions } from '../render/passes/display';
 import { TONEMAPS } from '../render/toneMaps';
+import type { SceneAssets } from '../scene/assets';
 import type { Scene } from '../scene/types';
-import type { HeadlessApi, LoadOptions } from '../headless/main';
+import type { HeadlessApi, LoadOptions, OutputRequest } from '../headless/main';
 import type { KernelRequest } from '../headless/kernels';
 import type { DenoiseRequest } from '../headless/denoise';
+import { hasAssets, packAssets } from './assetTransfer';
 import { serveDirectory, type StaticServer } from './server';
+import { mark } from './timing';
 
 export { TONEMAPS };
 export type { LoadOptions };
+
+/** RenderSession.readOutputs's request: the page's OutputRequest, the tone map by name. */
+export type OutputsRequest = Omit<OutputRequest, 'display'> & { display: { exposure: number; toneMap: string } };
 
 export const DEFAULT_CHROMIUM = '/usr/bin/chromium';
 
@@ -62,14 +68,22 @@ export interface SessionOptions {
   chromiumPath?: string;
   /** The built page to drive (default: dist/web); benchmarks point it at another build to compare. */
   webRoot?: string;
+  /**
+   * Gives up opening: once aborted, the next step (after Chromium's launch,
+   * the new page, the page load) closes what is open and rejects with the
+   * signal's reason. The CLI aborts when a file the scene names is bad.
+   */
+  signal?: AbortSignal;
 }
 
 export interface RenderSession {
   /**
    * Loads a parsed scene into a fresh PathTracer in the page, with the bytes
-   * of the files it names (by name as written; see readSceneFiles).
+   * of the files it names (by name as written; see readSceneFiles), which
+   * the page decodes, or with them decoded already (`assets`, which the page
+   * fetches as raw bytes and does not decode again; what the CLI passes).
    */
-  load(scene: Scene, options: LoadOptions, files?: Record<string, Uint8Array>): Promise<{ renderer: string }>;
+  load(scene: Scene, options: LoadOptions, files?: Record<string, Uint8Array>, assets?: SceneAssets): Promise<{ renderer: string }>;
   /**
    * Renders `samples` more samples per pixel, split into draws of about
    * DRAW_TARGET_MS (tiles of a sample when one sample is more; the first
@@ -89,6 +103,13 @@ export interface RenderSession {
   readAovs(): Promise<{ albedo: Float32Array; normal: Float32Array; samples: number }>;
   /** The displayed image exactly as the page shows it: RGBA8 sRGB, rows top to bottom. */
   readDisplayed(options: { exposure: number; toneMap: string }): Promise<Uint8Array>;
+  /**
+   * The CLI's images in one call, each crossing from the page once: the
+   * displayed image, the linear one (request.linear) and the guides
+   * (request.aovs); with request.denoise the page denoises the final image
+   * with the guides and both images are of the denoised one.
+   */
+  readOutputs(request: OutputsRequest): Promise<{ displayed: Uint8Array; linear?: Float32Array; albedo?: Float32Array; normal?: Float32Array }>;
   close(): Promise<void>;
   /** The page, for tests that need more than the API above. */
   readonly page: Page;
@@ -156,13 +177,27 @@ export async function openRenderSession(options: SessionOptions = {}): Promise<R
   chromiumPath(options); // fail before starting the server when Chromium is missing
   const server: StaticServer = await serveDirectory(root);
   let browser: Browser | undefined;
+  const { signal } = options;
   try {
+    mark('server up');
+    signal?.throwIfAborted();
     browser = await launchChromium(options);
+    mark('chromium launched');
+    signal?.throwIfAborted();
     const page = await browser.newPage();
+    mark('page opened');
+    signal?.throwIfAborted();
     const pageErrors: string[] = [];
     page.on('pageerror', (error) => pageErrors.push(error.message));
     await page.goto(`${server.url}headless.html`);
-    await page.waitForFunction(() => document.body.dataset.ready === 'true', undefined, { timeout: 30_000 });
+    mark('page loaded');
+    signal?.throwIfAborted();
+    // The page is ready at its load event (its module has run): one evaluate
+    // says so without waitForFunction's polling machinery (Playwright's
+    // injected script, compiled in the page first).
+    const ready = await page.evaluate(() => document.body.dataset.ready === 'true');
+    if (!ready) await page.waitForFunction(() => document.body.dataset.ready === 'true', undefined, { timeout: 30_000 });
+    mark('page ready');
     return createSession(page, browser, server, pageErrors);
   } catch (error) {
     await browser?.close();
@@ -195,11 +230,14 @@ function createSession(page: Page, browser: Browser, server: StaticServer, pageE
   return {
     page,
     probe: () => call('probe'),
-    async load(scene, options, files = {}) {
+    async load(scene, options, files = {}, assets) {
       pixels = options.width * options.height;
       pathsPerDraw = FIRST_PATHS_PER_DRAW; // a new scene: its cost is not known yet
       const encoded = Object.fromEntries(Object.entries(files).map(([name, bytes]) => [name, Buffer.from(bytes).toString('base64')]));
-      return call('load', scene, options, encoded);
+      if (!hasAssets(assets)) return call('load', scene, options, encoded);
+      const { manifest, bytes } = packAssets(assets);
+      manifest.url = server.publish(bytes);
+      return call('load', scene, options, encoded, manifest);
     },
     async render(samples) {
       // Whole samples per draw too, for pages built before pathsPerDraw (bench/versus.ts).
@@ -224,6 +262,17 @@ function createSession(page: Page, browser: Browser, server: StaticServer, pageE
     async readDisplayed(options) {
       const toneMap = options.toneMap as DisplayOptions['toneMap'];
       return new Uint8Array(Buffer.from(await call('readDisplayed', { exposure: options.exposure, toneMap }), 'base64'));
+    },
+    async readOutputs(request) {
+      const toneMap = request.display.toneMap as DisplayOptions['toneMap'];
+      const result = await call('readOutputs', { ...request, display: { exposure: request.display.exposure, toneMap } });
+      const optional = (base64: string | undefined) => (base64 === undefined ? undefined : toFloat32(base64));
+      return {
+        displayed: new Uint8Array(Buffer.from(result.displayed, 'base64')),
+        linear: optional(result.linear),
+        albedo: optional(result.albedo),
+        normal: optional(result.normal),
+      };
     },
     compileLog: (name, source) => call('compileLog', name, source),
     async runKernel(request) {

@@ -6,6 +6,7 @@
  * (never truncated, never left beside a temp file).
  * Needs `npm run build` (dist/cli and dist/web) and Chromium.
  */
+import { execFileSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -74,6 +75,28 @@ describe('bad input: exit 2, one line naming the file and the field', () => {
       'render.maxBounces: must be <= 64',
     ].sort().map((line) => expect.stringContaining(line)));
     expect(result.stderr).not.toMatch(/^\s+at /m);
+  }, TIMEOUT);
+
+  it('a bad mesh and a bad map: one line each naming the field, exit 2, no output, no Chromium left', async () => {
+    const where = outDir();
+    writeFileSync(join(where, 'garbage.ply'), 'ply\nthis is not a mesh\n');
+    writeFileSync(join(where, 'bad.exr'), 'not an EXR');
+    const scene = {
+      version: 2,
+      camera: { position: [0, 1, 4], target: [0, 0.5, 0] },
+      image: { width: 16, height: 12 },
+      environment: { map: 'bad.exr' },
+      meshes: [{ file: 'garbage.ply' }, { file: 'missing.obj' }],
+    };
+    writeFileSync(join(where, 'scene.json'), JSON.stringify(scene));
+    for (const command of ['render', 'validate']) {
+      const result = await pathtrace([command, join(where, 'scene.json'), ...(command === 'render' ? ['-o', join(where, 'x.png')] : [])]);
+      expect(result.code, result.stderr).toBe(2);
+      const lines = result.stderr.split('\n').filter((line) => line !== '');
+      expect(lines.map((line) => line.split(':')[0]).sort(), result.stderr).toEqual(['environment.map', 'meshes[0].file', 'meshes[1].file']);
+      expect(result.stderr).not.toMatch(/^\s+at |Error:/m);
+    }
+    expect(strays(where, ['garbage.ply', 'bad.exr', 'scene.json'])).toEqual([]);
   }, TIMEOUT);
 
   it('a scene over 1 MB, and a scene that is not an object', async () => {
@@ -173,5 +196,21 @@ describe('failures keep an existing output', () => {
     expect(bytes.subarray(0, 8).equals(Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]))).toBe(true);
     expect(bytes.subarray(-8, -4).toString('latin1')).toBe('IEND');
     expect(strays(out, ['replaced.png'])).toEqual([]);
+  }, TIMEOUT);
+
+  it('leaves no Chromium behind: no profile or temp directory, no process', async () => {
+    // Chromium's profile goes to TMPDIR: a fresh one shows whatever is left.
+    const temp = outDir();
+    // A scene with a bad file: Chromium's start-up is stopped once the file is found bad.
+    const badScene = join(outDir(), 'bad-mesh.json');
+    writeFileSync(join(badScene, '..', 'bad.obj'), 'not a mesh\n');
+    writeFileSync(badScene, JSON.stringify({ version: 2, camera: { position: [0, 1, 4], target: [0, 0, 0] }, meshes: [{ file: 'bad.obj' }] }));
+    for (const [scene, code, ...args] of [[SEED_SCENE, 0, '--spp', '1'], [SEED_SCENE, 0, '--spp', '1', '--denoise'], [badScene, 2]] as const) {
+      const result = await pathtrace(['render', scene, '--width', '8', '--height', '6', ...args, '-o', join(dir, 'left.png')], { TMPDIR: temp });
+      expect(result.code, result.stderr).toBe(code);
+      expect(readdirSync(temp), 'a Chromium profile was left behind').toEqual([]);
+      const alive = execFileSync('ps', ['-eo', 'args'], { encoding: 'utf8' }).split('\n').filter((line) => line.includes(temp));
+      expect(alive, 'a Chromium process survived').toEqual([]);
+    }
   }, TIMEOUT);
 });

@@ -13,7 +13,8 @@ import { decodePfm } from '../../src/image/pfm';
 import { decodePng } from '../../src/cli/png';
 import { formatDuration, formatRate } from '../../src/cli/progress';
 import { renderBudget, type CliSession, type SessionModule } from '../../src/cli/render';
-import type { LoadOptions } from '../../src/node/session';
+import type { LoadOptions, OutputsRequest } from '../../src/node/session';
+import type { SceneAssets } from '../../src/scene/assets';
 import type { Scene } from '../../src/scene/types';
 
 const FIXTURES = new URL('../fixtures/scenes/', import.meta.url).pathname;
@@ -36,6 +37,8 @@ interface FakeOptions {
   renderError?: Error;
   /** Virtual seconds each sample per pixel takes. */
   secondsPerSpp?: number;
+  /** Give the session readOutputs (every image in one call, as the current page does). */
+  readOutputs?: boolean;
 }
 
 /** A session module that "renders" a gradient that depends on the seed, on a virtual clock. */
@@ -43,7 +46,9 @@ function fakeSessionModule(options: FakeOptions = {}) {
   const log = {
     opened: 0,
     closed: 0,
-    loads: [] as { scene: Scene; options: LoadOptions }[],
+    loads: [] as { scene: Scene; options: LoadOptions; files?: Record<string, Uint8Array>; assets?: SceneAssets }[],
+    outputRequests: [] as OutputsRequest[],
+    signals: [] as (AbortSignal | undefined)[],
     renders: [] as number[],
     displayed: [] as { exposure: number; toneMap: string }[],
     linearReads: 0,
@@ -53,14 +58,15 @@ function fakeSessionModule(options: FakeOptions = {}) {
   const now = () => clock;
   const module: SessionModule = {
     TONEMAPS: ['none', 'aces', 'agx', 'neutral'],
-    async openRenderSession() {
+    async openRenderSession(sessionOptions) {
       log.opened++;
+      log.signals.push(sessionOptions?.signal);
       if (options.openError) throw options.openError;
       let size: LoadOptions = { width: 0, height: 0, seed: 0 };
       let total = 0;
       const session: CliSession = {
-        async load(scene, loadOptions) {
-          log.loads.push({ scene, options: loadOptions });
+        async load(scene, loadOptions, files, assets) {
+          log.loads.push({ scene, options: loadOptions, files, assets });
           size = loadOptions;
           return { renderer: 'fake' };
         },
@@ -95,6 +101,16 @@ function fakeSessionModule(options: FakeOptions = {}) {
           log.closed++;
         },
       };
+      if (options.readOutputs) {
+        session.readOutputs = async (request) => {
+          log.outputRequests.push(request);
+          const pixels = size.width * size.height;
+          const displayed = new Uint8Array(pixels * 4).fill(request.denoise ? 7 : 9);
+          const linear = request.linear ? new Float32Array(pixels * 4).fill(request.denoise ? 0.25 : 0.5) : undefined;
+          const guides = request.aovs ? { albedo: new Float32Array(pixels * 4).fill(0.5), normal: new Float32Array(pixels * 4).fill(1) } : {};
+          return { displayed, linear, ...guides };
+        };
+      }
       return session;
     },
   };
@@ -333,6 +349,53 @@ describe('render with a fake session', () => {
   });
 });
 
+describe('files the scene names', () => {
+  const meshScene = (mesh: string, map: string) =>
+    JSON.stringify({
+      version: 2,
+      camera: { position: [0, 1, 4], target: [0, 0.5, 0], fov: 35 },
+      image: { width: 16, height: 12 },
+      environment: { map, intensity: 0.2 },
+      meshes: [{ file: mesh, material: { color: [0.8, 0.8, 0.8] } }],
+    });
+
+  it('are decoded once, in Node: the session gets the decoded arrays, not the bytes', async () => {
+    writeFileSync(join(dir, 'tri.obj'), 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n');
+    writeFileSync(join(dir, 'mesh.json'), meshScene('tri.obj', new URL('../fixtures/envmaps/gradient-flat.hdr', import.meta.url).pathname));
+    const { code, stderr, log } = await cli(['render', join(dir, 'mesh.json'), '--spp', '1']);
+    expect(code, stderr.text).toBe(0);
+    const [{ files, assets }] = log.loads;
+    expect(Object.keys(files ?? {})).toEqual([]);
+    expect(Array.from(assets!.meshes.get('tri.obj')!.indices)).toEqual([0, 1, 2]);
+    expect(assets!.maps.size).toBe(1);
+  });
+
+  it('a bad mesh and a missing map: exit 2, one line each naming the field; a session opened meanwhile is closed', async () => {
+    writeFileSync(join(dir, 'empty.obj'), 'v 0 0 0\n');
+    writeFileSync(join(dir, 'bad.json'), meshScene('empty.obj', 'missing.exr'));
+    const { code, stderr, log } = await cli(['render', join(dir, 'bad.json')]);
+    expect(code).toBe(2);
+    expect(stderr.lines).toHaveLength(2);
+    expect(stderr.lines.some((line) => line.startsWith('environment.map: "missing.exr"'))).toBe(true);
+    expect(stderr.lines.some((line) => line.startsWith('meshes[0].file: "empty.obj"'))).toBe(true);
+    expect(log.loads).toEqual([]);
+    expect(log.closed).toBe(log.opened);
+    // Chromium's start-up is told to stop.
+    expect(log.signals.map((signal) => signal?.aborted)).toEqual([true]);
+  });
+
+  it('a bad file is reported before a bad output path and before a session that cannot start', async () => {
+    writeFileSync(join(dir, 'bad.json'), meshScene('missing.obj', 'missing.exr'));
+    const badOutput = await cli(['render', join(dir, 'bad.json'), '-o', join(dir, 'no', 'such', 'dir.png')]);
+    expect(badOutput.code).toBe(2);
+    expect(badOutput.stderr.lines).toHaveLength(2);
+    expect(badOutput.stderr.lines.every((line) => /^(environment\.map|meshes\[0\]\.file): /.test(line))).toBe(true);
+    const noChromium = await cli(['render', join(dir, 'bad.json')], { fake: fakeSessionModule({ openError: new Error('no Chromium') }) });
+    expect(noChromium.code).toBe(2);
+    expect(noChromium.stderr.lines).toHaveLength(2);
+  });
+});
+
 describe('output files', () => {
   it('a missing output directory fails fast with exit 2, before Chromium starts', async () => {
     const out = join(dir, 'no', 'such', 'dir', 'x.png');
@@ -374,6 +437,27 @@ describe('output files', () => {
     expect(Array.from(a.rgb.slice(0, 3))).toEqual([0.5, 0.5, 0.5]);
     expect(Array.from(n.rgb.slice(0, 3))).toEqual([0, 1, 0]);
     expect(stderr.lines.at(-1)).toContain('albedo.pfm');
+  });
+
+  it('with readOutputs, --denoise --aov --hdr reads every image in one call (nothing else crosses)', async () => {
+    const fake = fakeSessionModule({ readOutputs: true });
+    const [hdr, albedo, normal] = [join(dir, 'x.pfm'), join(dir, 'albedo.pfm'), join(dir, 'normal.pfm')];
+    const args = ['render', fixture('seed'), '--spp', '2', '--width', '8', '--denoise', '--hdr', hdr, '--aov', `${albedo},${normal}`, '--tonemap', 'aces'];
+    const { code, stderr, log } = await cli(args, { fake });
+    expect(code, stderr.text).toBe(0);
+    expect(log.outputRequests).toEqual([{ width: 8, height: 6, display: { exposure: 0, toneMap: 'aces' }, linear: true, aovs: true, denoise: true }]);
+    expect([log.linearReads, log.aovReads, log.displayed.length]).toEqual([0, 0, 0]);
+    expect(decodePfm(readFileSync(hdr)).rgb[0]).toBe(0.25);
+    expect(decodePfm(readFileSync(albedo)).rgb[0]).toBe(0.5);
+    expect(decodePfm(readFileSync(normal)).rgb[0]).toBe(1);
+    expect(decodePng(readFileSync(join(dir, 'seed.png'))).rgba[0]).toBe(7);
+  });
+
+  it('with readOutputs, a plain render asks for the linear image only with --hdr', async () => {
+    const fake = fakeSessionModule({ readOutputs: true });
+    const { code, log } = await cli(['render', fixture('seed'), '--spp', '1', '--width', '8'], { fake });
+    expect(code).toBe(0);
+    expect(log.outputRequests).toEqual([{ width: 8, height: 6, display: { exposure: 0, toneMap: 'none' }, linear: false, aovs: false, denoise: false }]);
   });
 
   it('--aov needs two different paths, none of them another output', async () => {
