@@ -29,10 +29,10 @@ describe('scene tables over several rows', () => {
     const firstInRow1 = Math.ceil(SCENE_ROW_TEXELS / MATERIAL.texels);
     const count = firstInRow1 + 16;
     expect(count).toBeLessThanOrEqual(MAX_SPHERES);
-    // The material that reaches into row 1 (straddling when MATERIAL is not a
-    // power-of-two size), a sphere record that straddles two rows if the
-    // layout has one, and the last sphere.
-    const materialAcross = Math.floor((SCENE_ROW_TEXELS - 1) / MATERIAL.texels);
+    // The material that holds the first texel of row 1 (straddling rows 0
+    // and 1 when MATERIAL is not a power-of-two size), a sphere record that
+    // straddles two rows if the layout has one, and the last sphere.
+    const materialAcross = Math.floor(SCENE_ROW_TEXELS / MATERIAL.texels);
     const across = Array.from({ length: count }, (_, i) => i).find((i) => straddles(sphereTexel(i), SPHERE.texels)) ?? count - 2;
     const visible = [materialAcross, across, firstInRow1 + 3, count - 1];
     expect(new Set(visible).size).toBe(visible.length);
