@@ -76,10 +76,13 @@ export interface MaterialKind<M extends MaterialBase = MaterialBase> {
   /** Its GLSL chunk (see the interface above), relative to src/shaders/. */
   readonly glsl: string;
   /**
-   * The boundary of a solid (glass): both sides are its own, so it is never
-   * made two-sided, and it cannot be the ground (a plane has no inside).
+   * Whether a material is the boundary of a solid (glass): both sides are
+   * its own, so it is never made two-sided, and it cannot be the ground (a
+   * plane has no inside).
    */
-  readonly solid: boolean;
+  readonly solid: (m: M) => boolean;
+  /** When `solid` can be true, what makes it so, for the ground's error message (`"dielectric"`). */
+  readonly solidWhen?: string;
   /** Mitsuba's BSDF for it (wrapped in `twosided` on meshes unless `solid`). */
   readonly mitsuba: (m: M) => XmlNode;
   /** The page's controls for its keys. */

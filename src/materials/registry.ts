@@ -82,8 +82,9 @@ function clean(value: unknown): unknown {
 }
 
 /** Whether the ground may have this material: not the boundary of a solid (a plane has no inside). */
-export const allowedOnGround = (m: Material) => !kindOf(m).solid;
-export const SOLID_TYPES: readonly string[] = KINDS.filter((k) => k.solid).map((k) => k.type);
+export const allowedOnGround = (m: Material) => !kindOf(m).solid(m);
+/** What the ground's material must not be, per kind that can be a solid's boundary. */
+export const SOLID_DESCRIPTIONS: readonly string[] = KINDS.flatMap((k) => (k.solidWhen ? [k.solidWhen] : []));
 
 // ---------------------------------------------------------------- versions and JSON
 
@@ -107,7 +108,7 @@ export function materialJson(m: Material, version: number): Record<string, unkno
 /** Mitsuba's BSDF of a material, one-sided (spheres and the ground). */
 export const materialBsdf = (m: Material) => kindOf(m).mitsuba(m);
 /** ... on a mesh: two-sided unless the boundary of a solid (the format's sidedness rule). */
-export const meshBsdf = (m: Material) => (kindOf(m).solid ? materialBsdf(m) : el('bsdf', { type: 'twosided' }, [materialBsdf(m)]));
+export const meshBsdf = (m: Material) => (kindOf(m).solid(m) ? materialBsdf(m) : el('bsdf', { type: 'twosided' }, [materialBsdf(m)]));
 
 // ---------------------------------------------------------------- page
 
@@ -161,7 +162,7 @@ export const MATERIAL_TEXELS = Math.max(...[...LAYOUTS.values()].map((l) => l.te
  */
 export function packMaterial(m: Material, onMesh: boolean): Float32Array {
   const kind = kindOf(m);
-  const flags = onMesh && !kind.solid ? FLAG_TWO_SIDED : 0;
+  const flags = onMesh && !kind.solid(m) ? FLAG_TWO_SIDED : 0;
   const e = m.emission;
   const emitted: Vec3 = e ? [e.color[0] * e.intensity, e.color[1] * e.intensity, e.color[2] * e.intensity] : [0, 0, 0];
   const record = packRecord(LAYOUTS.get(m.type)!, { emission: emitted, type: MATERIAL_TAGS[m.type] + flags, ...kind.pack(m) });

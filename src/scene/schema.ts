@@ -9,7 +9,7 @@
  */
 import * as z from 'zod';
 import {
-  allowedOnGround, defaultMaterial, MATERIAL_KEYS, materialSchema, normalizeMaterial, SOLID_TYPES, UNKNOWN_TYPE_MESSAGE,
+  allowedOnGround, defaultMaterial, MATERIAL_KEYS, materialSchema, normalizeMaterial, SOLID_DESCRIPTIONS, UNKNOWN_TYPE_MESSAGE,
 } from '../materials/registry';
 import { MAX_BOUNCES, MAX_IMAGE_SIZE, MAX_LIGHTS, MAX_MESHES, MAX_SCENE_BYTES, MAX_SPHERES } from './limits';
 import {
@@ -115,7 +115,7 @@ const environment = oneOf<Environment>(
 /** The ground is a plane: it has no inside (no solid's boundary, such as glass) and emits nothing. */
 const groundMaterial = material.refine(allowedOnGround, {
   path: ['type'],
-  message: `must not be ${SOLID_TYPES.map((t) => `"${t}"`).join(' or ')} on the ground (a plane has no inside)`,
+  message: `must not be ${SOLID_DESCRIPTIONS.join(' or ')} on the ground (a plane has no inside)`,
 }).refine((m) => m.emission === undefined, { path: ['emission'], message: 'is not allowed on the ground' });
 const groundShape = { height: coordinate().default(0), material: groundMaterial };
 const lightShape = {

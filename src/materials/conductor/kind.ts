@@ -63,7 +63,7 @@ export const conductor: MaterialKind<ConductorMaterial> = {
   fields: [['color', 'vec3'], ['roughness', 'float'], ['eta', 'vec3'], ['k', 'vec3']],
   pack: (m) => ({ color: m.color, roughness: m.roughness, eta: m.eta, k: m.k }),
   glsl: '../materials/conductor/conductor.glsl',
-  solid: false,
+  solid: () => false,
   mitsuba: (m) => {
     const ior = m.metal === undefined ? [rgb('eta', m.eta), rgb('k', m.k)] : [str('material', m.metal)];
     const common = [...ior, rgb('specular_reflectance', m.color)];

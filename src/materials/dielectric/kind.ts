@@ -39,7 +39,8 @@ export const dielectric: MaterialKind<DielectricMaterial> = {
   fields: [['color', 'vec3'], ['roughness', 'float'], ['ior', 'float']],
   pack: (m) => ({ color: m.color, roughness: m.roughness, ior: m.ior }),
   glsl: '../materials/dielectric/dielectric.glsl',
-  solid: true,
+  solid: () => true,
+  solidWhen: '"dielectric"',
   mitsuba: (m) => {
     const common = [float('int_ior', m.ior), float('ext_ior', 1), rgb('specular_transmittance', m.color)];
     return m.roughness === 0 ? el('bsdf', { type: 'dielectric' }, common) : el('bsdf', { type: 'roughdielectric' }, [...ggxLobe(m.roughness), ...common]);

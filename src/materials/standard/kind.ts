@@ -32,7 +32,7 @@ export const standard: MaterialKind<StandardMaterial> = {
   fields: [['color', 'vec3'], ['roughness', 'float']],
   pack: (m) => ({ color: m.color, roughness: m.roughness }),
   glsl: '../materials/standard/standard.glsl',
-  solid: false,
+  solid: () => false,
   mitsuba: (m) => {
     const r = m.roughness;
     const diffuse = el('bsdf', { type: 'diffuse' }, [rgb('reflectance', m.color)]);

@@ -1,4 +1,4 @@
-import type { Material } from '../../src/scene/types';
+import type { Material } from '../../scene/types';
 /**
  * The rough dielectric's sampler (GGX visible normals, then reflection with
  * probability F, else refraction) against its pdf, in the browser on the
@@ -16,9 +16,9 @@ import type { Material } from '../../src/scene/types';
  * part of f's support, or a pdf off by a factor, fails that.
  */
 import { describe, expect, it } from 'vitest';
-import { chiSquareTest } from '../support/chi2';
-import { useRenderSession } from '../support/browser';
-import { expectedCounts, sphereBin } from '../support/sphereHistogram';
+import { chiSquareTest } from '../../../test/support/chi2';
+import { useRenderSession } from '../../../test/support/browser';
+import { expectedCounts, sphereBin } from '../../../test/support/sphereHistogram';
 
 const SAMPLES_SIDE = 512; // 262,144 samples per case
 /** With 8 chi-square tests here (6 + 2 on caps), the false-failure rate stays below 1e-3. */
