@@ -4,6 +4,7 @@
  * a chi-square test of a material's sampler against its pdf, and the mean
  * of its sample weights (f |cos| / pdf, the directional albedo).
  */
+import { expect } from 'vitest';
 import type { RenderSession } from '../../src/node/session';
 import type { Material, Vec3 } from '../../src/scene/types';
 import { chiSquareTest, type ChiSquareResult } from './chi2';
@@ -40,6 +41,19 @@ export async function samplerChiSquare(session: RenderSession, material: Materia
     observed[sphereBin(x, y, z, bins)]++;
   }
   return { chiSquare: chiSquareTest(observed, expected), mass, validFraction: valid / n, belowHorizon };
+}
+
+/** Significance of each chi-square test: with tens of them, false failures stay rare. */
+const ALPHA = 1e-4;
+
+/** What a one-sided BSDF's sampler must show: samples above the surface only, distributed as its pdf. */
+export function expectSamplerMatchesPdf(result: SamplerCheck): void {
+  expect(result.belowHorizon).toBe(0);
+  expect(result.validFraction, 'most samples must be valid').toBeGreaterThan(0.5);
+  // VNDF samples reflected below the horizon are dropped: the pdf's mass is the valid share.
+  expect(Math.abs(result.mass - result.validFraction)).toBeLessThan(0.01);
+  expect(result.chiSquare.degreesOfFreedom).toBeGreaterThan(20);
+  expect(result.chiSquare.pValue, JSON.stringify(result)).toBeGreaterThan(ALPHA);
 }
 
 export interface WeightCheck {
