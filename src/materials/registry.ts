@@ -223,6 +223,8 @@ export function materialDefines(): Record<string, number> {
 
 /** The kinds' GLSL chunks, in KINDS order. */
 export const MATERIAL_CHUNK_NAMES: readonly string[] = KINDS.map((k) => k.glsl);
+/** The switch each chunk but the default kind's is compiled under (HAS_<KIND>). */
+export const MATERIAL_CHUNK_GUARDS: ReadonlyMap<string, string> = new Map(KINDS.filter((k) => k !== DEFAULT_KIND).map((k) => [k.glsl, `HAS_${upperName(k.type)}`]));
 
 // ---------------------------------------------------------------- generated GLSL
 

@@ -12,7 +12,7 @@ import { sceneLayoutDefines, sceneLayoutGlsl } from './layout/scene';
 import type { SceneFeatures } from './packScene';
 import { samplingDefines, type SamplerKind } from './sampling';
 import { bvhDefines } from './bvhTextures';
-import { bsdfDispatchGlsl, MATERIAL_CHUNK_NAMES, materialDefines, materialFeatureDefines, materialGlsl } from '../materials/registry';
+import { bsdfDispatchGlsl, MATERIAL_CHUNK_GUARDS, MATERIAL_CHUNK_NAMES, materialDefines, materialFeatureDefines, materialGlsl } from '../materials/registry';
 
 /** The chunks every kernel that touches the scene needs. */
 export const SCENE_CHUNK_NAMES = [
@@ -28,6 +28,7 @@ export const SCENE_CHUNK_NAMES = [
   'scene/intersect.glsl',
   'surface.glsl',
   'bsdf/ggx.glsl',
+  'bsdf/fresnel.glsl',
   ...MATERIAL_CHUNK_NAMES,
   'generated/bsdf_dispatch.glsl',
   'bsdf/bsdf.glsl',
@@ -45,9 +46,18 @@ const GENERATED: Record<string, () => string> = {
   'generated/bsdf_dispatch.glsl': bsdfDispatchGlsl,
 };
 
-/** The named chunks, generated ones made here and the rest read through `source`. */
+/**
+ * The named chunks, generated ones made here and the rest read through
+ * `source`; a material kind's chunk is compiled only in programs with its
+ * HAS_<KIND> (SwiftShader's compile time grows with the source).
+ */
 export function assembleChunks(names: readonly string[], source: (name: string) => string): ShaderChunk[] {
-  return names.map((name) => ({ name, source: GENERATED[name]?.() ?? source(name) }));
+  return names.map((name) => {
+    const generated = GENERATED[name];
+    if (generated) return { name, source: generated() };
+    const guard = MATERIAL_CHUNK_GUARDS.get(name);
+    return guard ? { name, source: `#if ${guard}\n${source(name)}\n#endif`, lineOffset: 1 } : { name, source: source(name) };
+  });
 }
 
 /** Defines of the scene chunks, before the per-variant feature switches. */

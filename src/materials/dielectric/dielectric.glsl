@@ -6,31 +6,8 @@
 // solid and by ior^2 leaving it. Two-sided: wo.z < 0 is a direction inside
 // the solid (the frame's normal points outside).
 
-// Unpolarized Fresnel reflectance at a boundary with relative index `eta`
-// (inside / outside), for cosThetaI measured against the outside normal
-// (negative from inside); Mitsuba's fresnel(). cosThetaT gets the
-// transmitted cosine (sign opposite to cosThetaI; 0 at total internal
-// reflection, where the result is 1), etaTI = eta_i / eta_t (Mitsuba's
-// eta_ti: Snell's sin_t = etaTI sin_i).
-float fresnelDielectric(float cosThetaI, float eta, out float cosThetaT, out float etaTI) {
-  bool outside = cosThetaI >= 0.0;
-  float etaIT = outside ? eta : 1.0 / eta;
-  etaTI = outside ? 1.0 / eta : eta;
-  float cosT2 = 1.0 - (1.0 - cosThetaI * cosThetaI) * (etaTI * etaTI);
-  float cosI = abs(cosThetaI);
-  float cosT = sqrt(max(cosT2, 0.0));
-  float as = (cosI - etaIT * cosT) / (cosI + etaIT * cosT);
-  float ap = (cosT - etaIT * cosI) / (cosT + etaIT * cosI);
-  float r = 0.5 * (as * as + ap * ap);
-  cosThetaT = outside ? -cosT : cosT;
-  return cosI == 0.0 ? 1.0 : r;
-}
-
 float dielectricAlpha(DielectricParams m) { return m.roughness * m.roughness; }
 bool dielectricSmooth(DielectricParams m) { return dielectricAlpha(m) < DELTA_ALPHA; }
-
-// Smith G1 on either side of the surface.
-float ggxG1Either(vec3 v, float alpha) { return ggxG1(vec3(v.xy, abs(v.z)), alpha); }
 
 // f(wo, wi) |cos wi| of the rough dielectric (0 for the smooth one, all of
 // which is a delta); `pdf` receives the density of dielectricSampleDirection

@@ -5,6 +5,8 @@
 export interface ShaderChunk {
   name: string;
   source: string;
+  /** Lines put before the file's own (a guard): its line 1 is source line 1 + lineOffset. */
+  lineOffset?: number;
 }
 
 export interface ShaderSource {
@@ -25,7 +27,7 @@ export function buildShader(chunks: ShaderChunk[], defines: Record<string, strin
   PRELUDE.forEach((line, i) => push(line, 'prelude', i + 1));
   Object.entries(defines).forEach(([key, value], i) => push(`#define ${key} ${value}`, 'defines', i + 1));
   for (const chunk of chunks) {
-    chunk.source.split('\n').forEach((line, i) => push(line, chunk.name, i + 1));
+    chunk.source.split('\n').forEach((line, i) => push(line, chunk.name, i + 1 - (chunk.lineOffset ?? 0)));
   }
   return { text: lines.join('\n'), origins };
 }

@@ -31,3 +31,6 @@ vec3 sampleGgxVisibleNormal(vec3 wo, float alpha, vec2 disk) {
   vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
   return normalize(vec3(alpha * nh.x, alpha * nh.y, max(1e-7, nh.z)));
 }
+
+// Smith G1 on either side of the surface.
+float ggxG1Either(vec3 v, float alpha) { return ggxG1(vec3(v.xy, abs(v.z)), alpha); }
