@@ -2,7 +2,7 @@
  * Fixture for the conductor's furnace test (src/materials/conductor/conductor.test.ts):
  * Mitsuba 3's own directional albedo of rough conductors, through our
  * exporter's BSDF. Writes the cases with their Mitsuba XML, then runs
- * scripts/conductor-albedo.py (needs `pip install mitsuba`), which adds
+ * scripts/mitsuba-albedo.py (needs `pip install mitsuba`), which adds
  * Mitsuba's albedo at each view angle.
  *   npx tsx scripts/make-conductor-furnace.ts
  */
@@ -27,4 +27,4 @@ const out = CASES.map((input) => {
 });
 const path = new URL('../test/fixtures/furnace-conductor/cases.json', import.meta.url);
 writeFileSync(path, JSON.stringify(out, null, 2));
-execFileSync('python3', [new URL('./conductor-albedo.py', import.meta.url).pathname, path.pathname], { stdio: 'inherit' });
+execFileSync('python3', [new URL('./mitsuba-albedo.py', import.meta.url).pathname, path.pathname], { stdio: 'inherit' });

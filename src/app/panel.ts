@@ -8,7 +8,7 @@ import { TONEMAPS } from '../render/toneMaps';
 import { hexToLinear, linearToHex } from '../scene/color';
 import { MAX_BOUNCES } from '../scene/limits';
 import { defaultMaterial } from '../materials/registry';
-import type { Ground, Material } from '../scene/types';
+import type { Ground, Material, Vec3 } from '../scene/types';
 import type { App } from './App';
 import { addSphereMaterialControls } from './materialControls';
 import { addMeshControls } from './meshControls';
@@ -96,12 +96,13 @@ export class Panel {
     folder.open();
   }
 
-  /** The ground's material: its color and roughness (every kind has them); no emission (the format forbids it there). */
+  /** The ground's material: its color (a principled material's baseColor) and roughness (every kind has them); no emission (the format forbids it there). */
   private materialControls(folder: GUI, material: () => Material): void {
     const app = this.app;
+    const colored = () => { const m = material(); return m.type === 'principled' ? { get: () => m.baseColor, set: (c: Vec3) => (m.baseColor = c) } : { get: () => m.color, set: (c: Vec3) => (m.color = c) }; };
     this.tracked(folder.addColor({
-      get color() { return linearToHex(material().color); },
-      set color(v: string) { app.live(() => (material().color = hexToLinear(v))); },
+      get color() { return linearToHex(colored().get()); },
+      set color(v: string) { app.live(() => colored().set(hexToLinear(v))); },
     }, 'color'));
     this.tracked(folder.add({
       get roughness() { return material().roughness; },

@@ -17,10 +17,11 @@ import type { Emission, Vec3 } from '../scene/types';
 import { conductor, type ConductorMaterial } from './conductor/kind';
 import { dielectric, type DielectricMaterial } from './dielectric/kind';
 import type { MaterialControl, MaterialKind } from './kind';
+import { principled, type PrincipledMaterial } from './principled/kind';
 import { standard, type StandardMaterial } from './standard/kind';
 
-export type { ConductorMaterial, DielectricMaterial, StandardMaterial };
-export type Material = StandardMaterial | DielectricMaterial | ConductorMaterial;
+export type { ConductorMaterial, DielectricMaterial, PrincipledMaterial, StandardMaterial };
+export type Material = StandardMaterial | DielectricMaterial | ConductorMaterial | PrincipledMaterial;
 export type MaterialType = Material['type'];
 
 /**
@@ -28,7 +29,7 @@ export type MaterialType = Material['type'];
  * version-1 material) and is compiled into every program: the BSDF
  * dispatch falls through to it.
  */
-export const KINDS: readonly MaterialKind<Material>[] = [standard, dielectric, conductor] as unknown as MaterialKind<Material>[];
+export const KINDS: readonly MaterialKind<Material>[] = [standard, dielectric, conductor, principled] as unknown as MaterialKind<Material>[];
 const DEFAULT_KIND = KINDS[0];
 export const MATERIAL_TYPE_NAMES: readonly string[] = KINDS.map((k) => k.type);
 

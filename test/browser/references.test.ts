@@ -84,6 +84,7 @@ const SCENES: Record<string, { spp: number; block?: number; worstBlock?: number;
   // Version 3 (4096-spp references: twice the reference noise). Conductors:
   // named metals, given eta and k, smooth and rough, a rough tinted metal ground.
   conductor: { spp: 512, referenceSpp: 4096 },
+  principled: { spp: 512, referenceSpp: 4096 },
 };
 const BATCHES = 8;
 

@@ -22,10 +22,18 @@ export interface SamplerCheck {
   belowHorizon: number;
 }
 
-/** Samples `material` seen from `wo` and bins the directions against the pdf integrated per bin. */
-export async function samplerChiSquare(session: RenderSession, material: Material, wo: Vec3, seed = 5): Promise<SamplerCheck> {
+export interface SamplerOptions {
+  /** Pdf points per bin side (midpoint rule): 16 by default; sharp features (a refraction lobe's Jacobian) need more. */
+  sub?: number;
+}
+
+/**
+ * Samples `material` seen from `wo` and bins the directions over the whole
+ * sphere (reflection and transmission alike) against the pdf integrated per bin.
+ */
+export async function samplerChiSquare(session: RenderSession, material: Material, wo: Vec3, seed = 5, options: SamplerOptions = {}): Promise<SamplerCheck> {
   const bins = { cosBins: 20, phiBins: 40 };
-  const sub = 16;
+  const sub = options.sub ?? 16;
   const n = SAMPLES_SIDE * SAMPLES_SIDE;
   const samples = await session.runKernel({ kernel: 'sampleMaterial', width: SAMPLES_SIDE, height: SAMPLES_SIDE, material, wo, seed });
   const grid = await session.runKernel({ kernel: 'pdfMaterial', width: bins.phiBins * sub, height: bins.cosBins * sub, material, wo });

@@ -73,11 +73,17 @@ function checkScene(scene: Scene): void {
     } else if (m.type === 'conductor') {
       keys(m, ['type', ...('metal' in m ? ['metal'] : []), 'eta', 'k', 'roughness', 'color', ...emission], what);
       check(vec(m.eta, (x) => x >= 0) && vec(m.k, (x) => x >= 0), `${what}.eta and k >= 0`);
+    } else if (m.type === 'principled') {
+      const scalars = ['metallic', 'roughness', 'specTint', 'specTrans', 'sheen', 'sheenTint', 'clearcoat', 'clearcoatGloss'] as const;
+      keys(m, ['type', 'baseColor', ...scalars, 'ior', ...emission], what);
+      check(vec(m.baseColor, (x) => x >= 0 && x <= 1), `${what}.baseColor in [0, 1]`);
+      for (const key of scalars) check(m[key] >= 0 && m[key] <= 1, `${what}.${key} in [0, 1]`);
+      check(m.ior >= 1.01 && m.ior <= 4, `${what}.ior in [1.01, 4]`);
     } else {
       keys(m, ['type', 'color', 'roughness', ...emission], what);
       check(m.type === 'standard', `${what}.type is standard or dielectric`);
     }
-    check(vec(m.color, (x) => x >= 0 && x <= 1), `${what}.color in [0, 1]`);
+    if (m.type !== 'principled') check(vec(m.color, (x) => x >= 0 && x <= 1), `${what}.color in [0, 1]`);
     check(m.roughness >= 0 && m.roughness <= 1, `${what}.roughness in [0, 1]`);
     if (m.emission) check(vec(m.emission.color, (x) => x >= 0) && m.emission.intensity >= 0, `${what}.emission >= 0`);
   };

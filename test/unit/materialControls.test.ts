@@ -52,7 +52,7 @@ describe('switchMaterialType', () => {
     const same = switchMaterialType(red, 'standard');
     expect(same).toEqual(red);
     expect(same).not.toBe(red);
-    expect(same.color).not.toBe(red.color);
+    expect((same as typeof red).color).not.toBe(red.color);
   });
 
   it('makes a version-2 scene out of a version-1 one; switching back makes it version 1 again', () => {

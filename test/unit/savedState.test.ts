@@ -21,7 +21,7 @@ import type { Scene } from '../../src/scene/types';
 
 function state(overrides: Partial<SavedState> = {}): SavedState {
   const scene = defaultScene();
-  scene.spheres[0].material.color = [0.1, 0.7, 0.2];
+  (scene.spheres[0].material as { color: [number, number, number] }).color = [0.1, 0.7, 0.2];
   return {
     scene,
     homeCamera: defaultScene().camera,

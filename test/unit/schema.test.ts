@@ -55,8 +55,8 @@ function thrown(run: () => unknown): SceneError {
 }
 
 describe('valid scenes', () => {
-  it('finds the thirteen fixtures', () => {
-    expect(fixtureNames.sort()).toEqual(['bunny', 'conductor', 'emissive', 'emissive-mesh', 'emissive-tilted-normals', 'envmap', 'furnace', 'glass', 'glossy', 'instanced', 'mirrors', 'seed', 'small-light']);
+  it('finds the fourteen fixtures', () => {
+    expect(fixtureNames.sort()).toEqual(['bunny', 'conductor', 'emissive', 'emissive-mesh', 'emissive-tilted-normals', 'envmap', 'furnace', 'glass', 'glossy', 'instanced', 'mirrors', 'principled', 'seed', 'small-light']);
   });
 
   it.each(fixtureNames)('parses %s, keeping its values', (name) => {
@@ -152,7 +152,7 @@ describe('valid scenes', () => {
     });
     expect(scene.environment && 'color' in scene.environment && scene.environment.color).toEqual([1, 1, 1]);
     expect(scene.lights[0].color[0]).toBeCloseTo(0.2158605, 7);
-    expect(scene.spheres[0].material.color).toEqual([0, 0, 0]);
+    expect((scene.spheres[0].material as { color: unknown }).color).toEqual([0, 0, 0]);
   });
 
   it('accepts values at the edges of their ranges', () => {
@@ -217,7 +217,7 @@ describe('valid scenes', () => {
 
 describe('presets', () => {
   it('are copies of the fixture scenes (all but those that need map or mesh files)', () => {
-    expect([...PRESET_NAMES].sort()).toEqual(fixtureNames.filter((name) => !['bunny', 'conductor', 'envmap', 'emissive-mesh', 'emissive-tilted-normals', 'instanced'].includes(name)).sort());
+    expect([...PRESET_NAMES].sort()).toEqual(fixtureNames.filter((name) => !['bunny', 'conductor', 'envmap', 'emissive-mesh', 'emissive-tilted-normals', 'instanced', 'principled'].includes(name)).sort());
     for (const name of PRESET_NAMES) expect(PRESETS[name]).toEqual(fixture(name));
   });
 
@@ -306,7 +306,7 @@ const BAD_SCENES: [string, unknown, string, string][] = [
   ['a map in a version-1 document', edited((s) => (s.environment = { map: 'sky.hdr' })), 'environment.map', 'requires "version": 2'],
   ['meshes in a version-1 document', edited((s) => (s.meshes = [])), 'meshes', 'requires "version": 2'],
   ['an unknown material type', v2((s) => (s.spheres[0].material.type = 'glass')), 'spheres[0].material.type', 'must be "standard" or "dielectric" or "conductor"'],
-  ['a dielectric ground', v2((s) => (s.ground.material = { type: 'dielectric' })), 'ground.material.type', 'must not be "dielectric" on the ground'],
+  ['a dielectric ground', v2((s) => (s.ground.material = { type: 'dielectric' })), 'ground.material.type', 'must not be "dielectric" or "principled" with specTrans above 0 on the ground'],
   ['an emissive ground', v2((s) => (s.ground.material.emission = { intensity: 2 })), 'ground.material.emission', 'is not allowed on the ground'],
   ['ior below 1.01', v2((s) => (s.spheres[0].material = { type: 'dielectric', ior: 1 })), 'spheres[0].material.ior', 'must be >= 1.01'],
   ['ior above 4', v2((s) => (s.spheres[0].material = { type: 'dielectric', ior: 4.5 })), 'spheres[0].material.ior', 'must be <= 4'],

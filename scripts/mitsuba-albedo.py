@@ -1,5 +1,10 @@
-"""Adds Mitsuba 3's directional albedo (mean BSDF sample weight, per RGB channel)
-to each case of the conductor furnace fixture (see make-conductor-furnace.ts)."""
+"""Adds Mitsuba 3's directional albedo (mean BSDF sample weight, per RGB
+channel, and its standard error) to each case of a furnace fixture: a JSON
+list of {material, xml, thetas} (make-conductor-furnace.ts,
+make-principled-furnace.ts). The view direction is (sin theta, 0, cos theta)
+in the shading frame: theta above 90 degrees looks from below the surface
+(inside a solid). Scalar RGB variant, N samples per angle, seed 7.
+  python3 scripts/mitsuba-albedo.py FIXTURE.json"""
 import json, math, sys
 import mitsuba as mi
 mi.set_variant('scalar_rgb')
