@@ -7,7 +7,7 @@ import GUI, { type Controller } from 'lil-gui';
 import { TONEMAPS } from '../render/toneMaps';
 import { hexToLinear, linearToHex } from '../scene/color';
 import { MAX_BOUNCES } from '../scene/limits';
-import { defaultMaterial } from '../materials/registry';
+import { defaultMaterial, mainColorKey } from '../materials/registry';
 import type { Ground, Material, Vec3 } from '../scene/types';
 import type { App } from './App';
 import { addSphereMaterialControls } from './materialControls';
@@ -96,10 +96,14 @@ export class Panel {
     folder.open();
   }
 
-  /** The ground's material: its color (a principled material's baseColor) and roughness (every kind has them); no emission (the format forbids it there). */
+  /** The ground's material: its main color (mainColorKey) and roughness (every kind has them); no emission (the format forbids it there). */
   private materialControls(folder: GUI, material: () => Material): void {
     const app = this.app;
-    const colored = () => { const m = material(); return m.type === 'principled' ? { get: () => m.baseColor, set: (c: Vec3) => (m.baseColor = c) } : { get: () => m.color, set: (c: Vec3) => (m.color = c) }; };
+    const colored = () => {
+      const m = material() as unknown as Record<string, Vec3>;
+      const key = mainColorKey(material());
+      return { get: () => m[key], set: (c: Vec3) => (m[key] = c) };
+    };
     this.tracked(folder.addColor({
       get color() { return linearToHex(colored().get()); },
       set color(v: string) { app.live(() => colored().set(hexToLinear(v))); },

@@ -116,6 +116,8 @@ export const meshBsdf = (m: Material) => (kindOf(m).solid(m) ? materialBsdf(m) :
 /** The page's controls of a material's kind. */
 export const materialControls = (m: Material): readonly MaterialControl[] => kindOf(m).controls;
 export const kindLabel = (type: string) => BY_TYPE.get(type)?.label ?? type;
+/** The key of a material's main color (its kind's first color control: `color`, or a principled material's `baseColor`). */
+export const mainColorKey = (m: Material): string => kindOf(m).controls.find((c) => c.control === 'color')?.key ?? 'color';
 
 /**
  * The material after switching `current` to kind `to`; emission is kept.
