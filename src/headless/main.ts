@@ -6,7 +6,7 @@
 import { DEFAULT_PATHS_PER_DRAW, PathTracer } from '../render/PathTracer';
 import type { DisplayOptions } from '../render/passes/display';
 import type { SamplerKind } from '../render/sampling';
-import { loadSceneAssets, NO_ASSETS } from '../scene/assets';
+import { loadSceneAssets, NO_ASSETS, type SceneAssets } from '../scene/assets';
 import { unpackAssets, type AssetManifest } from '../node/assetTransfer';
 import type { Scene } from '../scene/types';
 import { runKernel, type KernelRequest } from './kernels';
@@ -122,6 +122,28 @@ function reuseTracer(scene: Scene, options: LoadOptions, assets: Awaited<ReturnT
   return true;
 }
 
+/**
+ * The files of the last load, as sent and as decoded: a load that sends the
+ * same bytes again (a test rendering one scene in seeded batches) reuses
+ * the decoded data, so the renderer keeps its BVH and map distribution
+ * instead of decoding and building them anew for every batch.
+ */
+let lastFiles: { texts: Record<string, string>; assets: SceneAssets } | null = null;
+
+function sameFiles(files: Record<string, string>): SceneAssets {
+  if (!lastFiles) return NO_ASSETS;
+  const { texts, assets } = lastFiles;
+  const same = (name: string) => texts[name] !== undefined && texts[name] === files[name];
+  return {
+    maps: new Map([...assets.maps].filter(([name]) => same(name))),
+    meshes: new Map([...assets.meshes].filter(([name]) => same(name))),
+  };
+}
+
+function rememberFiles(files: Record<string, string>, assets: SceneAssets): void {
+  lastFiles = { texts: files, assets };
+}
+
 function requireTracer(): PathTracer {
   if (!tracer) throw new Error('no scene loaded');
   return tracer;
@@ -159,11 +181,12 @@ const api: HeadlessApi = {
     return { webgl2: !!gl, floatTargets, renderer };
   },
   async load(scene, options, files = {}, decoded) {
-    const known = decoded ? unpackAssets(decoded, await fetchBlock(decoded.url)) : NO_ASSETS;
+    const known = decoded ? unpackAssets(decoded, await fetchBlock(decoded.url)) : sameFiles(files);
     const assets = await loadSceneAssets(scene, async (name) => {
       if (!(name in files)) throw new Error('no such file was given to the page');
       return bytesFromBase64(files[name]);
     }, known);
+    rememberFiles(files, assets);
     const kind = JSON.stringify([options.sampler ?? 'kronecker', options.russianRoulette ?? false]);
     if (!reuseTracer(scene, options, assets, kind)) {
       tracer?.dispose();
