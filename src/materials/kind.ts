@@ -29,6 +29,10 @@ import type { FieldType, RecordValues } from '../render/layout/records';
 import type { XmlNode } from '../scene/mitsubaXml';
 import type { Emission, Vec3 } from '../scene/types';
 
+/** Range of an index of refraction inside a solid (the scene format's, for every kind that has one). */
+export const MIN_IOR = 1.01;
+export const MAX_IOR = 4;
+
 /** GGX lobes with alpha = r^2 below this are treated as ideal (delta) lobes, in every BSDF (as pbrt-v4 does). */
 export const DELTA_ALPHA = 1e-3;
 
@@ -81,7 +85,7 @@ export interface MaterialKind<M extends MaterialBase = MaterialBase> {
    * plane has no inside).
    */
   readonly solid: (m: M) => boolean;
-  /** When `solid` can be true, what makes it so, for the ground's error message (`"dielectric"`). */
+  /** When `solid` can be true, what makes it so, for the ground's error message (the kind's `type` in quotes, and when). */
   readonly solidWhen?: string;
   /** Mitsuba's BSDF for it (wrapped in `twosided` on meshes unless `solid`). */
   readonly mitsuba: (m: M) => XmlNode;

@@ -5,15 +5,12 @@
  * specular_transmittance = color (scene format version 2). GLSL:
  * dielectric.glsl.
  */
-import type { MaterialKind } from '../kind';
+import { MAX_IOR, MIN_IOR, type MaterialKind } from '../kind';
 import { el, float, ggxLobe, rgb } from '../../scene/mitsubaXml';
 import { color, unit, white } from '../../scene/schemaParts';
 import type { Emission, Vec3 } from '../../scene/types';
 import * as z from 'zod';
 
-/** Range of the index of refraction. */
-export const MIN_IOR = 1.01;
-export const MAX_IOR = 4;
 
 export interface DielectricMaterial {
   type: 'dielectric';

@@ -13,11 +13,10 @@
  * texture step: until then they are unknown keys. GLSL: principled.glsl.
  */
 import * as z from 'zod';
-import type { MaterialKind } from '../kind';
+import { MAX_IOR, MIN_IOR, type MaterialKind } from '../kind';
 import { el, float, rgb } from '../../scene/mitsubaXml';
 import { color, unit } from '../../scene/schemaParts';
 import type { Emission, Vec3 } from '../../scene/types';
-import { MAX_IOR, MIN_IOR } from '../dielectric/kind';
 
 export interface PrincipledMaterial {
   type: 'principled';
