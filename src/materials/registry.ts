@@ -10,7 +10,7 @@
  * tests, and one line in KINDS below. Nothing else names a kind.
  */
 import * as z from 'zod';
-import { defineRecord, packRecord, type RecordLayout } from '../render/layout/records';
+import { defineRecord, fieldRead, packRecord, type RecordLayout } from '../render/layout/records';
 import { el } from '../scene/mitsubaXml';
 import { emission } from '../scene/schemaParts';
 import type { Emission, Vec3 } from '../scene/types';
@@ -232,8 +232,6 @@ export const MATERIAL_CHUNK_GUARDS: ReadonlyMap<string, string> = new Map(KINDS.
 // ---------------------------------------------------------------- generated GLSL
 
 const texelNames = (from: number) => Array.from({ length: MATERIAL_TEXELS - from }, (_, i) => `t${i + from}`);
-const SWIZZLE = 'xyzw';
-const SIZES = { float: 1, int: 1, vec3: 3, vec4: 4 } as const;
 
 /** The kind's parameter struct and its reader from a Bsdf's texels. */
 function paramsGlsl(kind: MaterialKind<Material>): string {
@@ -241,10 +239,7 @@ function paramsGlsl(kind: MaterialKind<Material>): string {
   const fields = layout.fields.slice(HEADER_FIELDS.length);
   const name = `${capitalized(kind.type)}Params`;
   const members = fields.map((f) => `  ${f.type} ${f.name};`).join('\n');
-  const reads = fields.map((f) => {
-    const read = `b.t${f.texel}.${SWIZZLE.slice(f.offset, f.offset + SIZES[f.type])}`;
-    return `  p.${f.name} = ${f.type === 'int' ? `int(${read})` : read};`;
-  });
+  const reads = fields.map((f) => `  p.${f.name} = ${fieldRead(f, 'b.')};`);
   return `struct ${name} {\n${members}\n};\n${name} ${kind.type}Params(Bsdf b) {\n  ${name} p;\n${reads.join('\n')}\n  return p;\n}`;
 }
 

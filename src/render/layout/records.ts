@@ -66,10 +66,11 @@ export function recordDefines(layout: RecordLayout): Record<string, number> {
   return defines;
 }
 
-function fieldRead(field: Field): string {
+/** The GLSL expression of a field read from texels named `<texels>t0`, `<texels>t1`, ... */
+export function fieldRead(field: Field, texels = ''): string {
   const size = SIZE[field.type];
   const swizzle = SWIZZLE.slice(field.offset, field.offset + size);
-  const read = `t${field.texel}.${swizzle}`;
+  const read = `${texels}t${field.texel}.${swizzle}`;
   return field.type === 'int' ? `int(${read})` : read;
 }
 
