@@ -4,7 +4,7 @@
  * principledhelpers.h of Mitsuba 3.9): Disney's diffuse with
  * retro-reflection (no fake subsurface: `flatness` 0), GGX with
  * alpha = max(0.001, roughness^2) and visible-normal sampling, the exact
- * dielectric Fresnel term blended with Schlick on the metal and the
+ * Fresnel term of the boundary (relative index eta) blended with Schlick on the metal and the
  * specular tint, sheen, a GTR1 clear coat and rough transmission, with
  * Mitsuba's lobe-sampling probabilities (every sampling rate 1). With
  * `specTrans` 0 it is opaque (one-sided on spheres and the ground,

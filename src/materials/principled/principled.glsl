@@ -12,9 +12,9 @@
 //   main reflection: GGX (alpha = max(0.001, roughness^2), visible normals)
 //     times principled_fresnel: outside (1 - metallic)(1 - specTint) F +
 //     metallic Schlick(baseColor) + (1 - metallic) specTint
-//     Schlick(tint R0(eta)), F the exact dielectric Fresnel term; inside
+//     Schlick(tint R0(eta)), F the boundary's exact Fresnel term; inside
 //     bsdf F (untinted);
-//   transmission: sqrt(baseColor) bsdf times the rough dielectric's
+//   transmission: sqrt(baseColor) bsdf times the rough refracting boundary's
 //     (radiance mode: the 1 / eta^2 factors cancel eta_path^2);
 //   clear coat (outside): 0.25 clearcoat Schlick(0.04) D_GTR1 G |cos wi|,
 //     alpha = 0.1 - 0.099 clearcoatGloss, separable Smith G with alpha 0.25
@@ -93,7 +93,7 @@ bool principledCompatible(vec3 m, vec3 wo, vec3 wi, bool reflection) {
 }
 
 // The lobe-selection probabilities (diffuse, clear coat, reflection,
-// transmission), normalized, for F the dielectric Fresnel term at the
+// transmission), normalized, for F the boundary's Fresnel term at the
 // microfacet.
 vec4 principledLobeProbabilities(PrincipledParams p, bool front, float F) {
   float bsdf = principledBsdf(p);
