@@ -2,17 +2,24 @@
  * Scene -> the packed arrays the shaders read (layout: layout/scene.ts).
  * Pure: no GL, so it is unit-tested directly.
  *
- * Each `lights` entry becomes a sphere with an emitter-only material; every
- * sphere whose material emits is also an emitter. Light sampling picks an
- * emitter in proportion to its power through an alias table.
+ * Each sphere light becomes a sphere with an emitter-only material; every
+ * sphere whose material emits is also an emitter. Rectangle and disk lights
+ * go into the planar-light table (with emitter-only materials), point,
+ * spot and directional lights into the emitter table only
+ * (src/lights/registry.ts). Light sampling picks an emitter in proportion
+ * to its power through an alias table.
  */
 import { materialFeatures, packEmitterOnly, packMaterial } from '../materials/registry';
+import {
+  type Light, lightArea, lightEmitted, lightExtent, lightFeatures, lightPower, lightSphere, packEmitter, packLightEmitter, packPlanarLight,
+} from '../lights/registry';
 import type { Material, Scene, Vec3 } from '../scene/types';
 import { buildAliasTable } from './aliasTable';
 import type { MeshGroups } from './bvh/groups';
 import { selectCausticGuides, type GuideSphere } from './causticGuides';
 import {
-  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MESH, SECTIONS, SPHERE,
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MESH, PLANAR_LIGHT, SECTIONS,
+  SPHERE,
 } from './layout/scene';
 import { packRecord } from './layout/records';
 
@@ -22,6 +29,8 @@ export interface SceneFeatures {
   guides: number;
   /** The material kinds whose code is compiled in, besides the default (src/materials/registry.ts). */
   materials: readonly string[];
+  /** The light kinds whose code is compiled in, besides the sphere (src/lights/registry.ts). */
+  lights: readonly string[];
   environmentMap: boolean;
   /** Triangle meshes (the BVH traversal). */
   meshes: boolean;
@@ -35,6 +44,7 @@ export interface SceneFeatures {
 export const BASE_FEATURES: SceneFeatures = {
   guides: 0,
   materials: [],
+  lights: [],
   environmentMap: false,
   meshes: false,
   emissiveMeshes: false,
@@ -83,12 +93,20 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
 
   const spheres = sceneSpheres(scene);
   const emitters = spheres.flatMap((s, index) => (power(s) > 0 ? [{ index, sphere: s }] : []));
-  const environmentPower = mapEnvironmentPower(scene, spheres, options.environmentIntegral);
+  const bounds = { radius: sceneRadius(scene, spheres) };
+  const environmentPower = mapEnvironmentPower(scene, bounds.radius, options.environmentIntegral);
   const meshEmitters = emissiveMeshes(scene, options.meshes ?? []);
+  // The other lights' emitters come last, so scenes without them keep version 2's tables.
+  const planarLights = scene.lights.filter((l) => lightArea(l) !== null);
+  const otherLights = scene.lights.filter((l) => lightSphere(l) === null).flatMap((light) => {
+    const p = lightPower(light, bounds);
+    return p > 0 ? [{ light, power: p }] : [];
+  });
   const powers = [
     ...emitters.map((e) => power(e.sphere)),
     ...(environmentPower > 0 ? [environmentPower] : []),
     ...meshEmitters.map((m) => m.power),
+    ...otherLights.map((l) => l.power),
   ];
   const alias = buildAliasTable(powers);
   const emitterPdf = new Map(emitters.map((e, i) => [e.index, alias.pdf[i]]));
@@ -98,26 +116,22 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     const record = packRecord(SPHERE, { center: sphere.center, radius: sphere.radius, material, emitterPdf: emitterPdf.get(i) ?? 0 });
     data.set(record, (SECTIONS.spheres + i * SPHERE.texels) * 4);
   });
+  const setEmitter = (slot: number, record: Float32Array) => data.set(record, (SECTIONS.emitters + slot * EMITTER.texels) * 4);
   emitters.forEach(({ index, sphere }, i) => {
-    const record = packRecord(EMITTER, {
-      center: sphere.center,
-      radius: sphere.radius,
-      radiance: sphere.radiance,
-      pdf: alias.pdf[i],
-      kind: EMITTER_KINDS.sphere,
-      primitive: index,
-    });
-    data.set(record, (SECTIONS.emitters + i * EMITTER.texels) * 4);
+    setEmitter(i, packEmitter({ radiance: sphere.radiance, pdf: alias.pdf[i], kind: EMITTER_KINDS.sphere, primitive: index }, 'sphere', { center: sphere.center, radius: sphere.radius }));
   });
-  if (environmentPower > 0) {
-    const record = packRecord(EMITTER, { pdf: alias.pdf[emitters.length], kind: EMITTER_KINDS.environment, primitive: -1 });
-    data.set(record, (SECTIONS.emitters + emitters.length * EMITTER.texels) * 4);
-  }
+  if (environmentPower > 0) setEmitter(emitters.length, packEmitter({ pdf: alias.pdf[emitters.length], kind: EMITTER_KINDS.environment, primitive: -1 }));
   const firstMesh = emitters.length + (environmentPower > 0 ? 1 : 0);
   meshEmitters.forEach((m, i) => {
     const pdf = alias.pdf[firstMesh + i];
-    const record = packRecord(EMITTER, { radiance: m.radiance, pdf, kind: EMITTER_KINDS.mesh, primitive: m.mesh, first: m.first, count: m.count });
-    data.set(record, (SECTIONS.emitters + (firstMesh + i) * EMITTER.texels) * 4);
+    setEmitter(firstMesh + i, packEmitter({ radiance: m.radiance, pdf, kind: EMITTER_KINDS.mesh, primitive: m.mesh, first: m.first, count: m.count }));
+  });
+  const firstLight = firstMesh + meshEmitters.length;
+  const lightPdfs = new Map<Light, number>(otherLights.map(({ light }, i) => [light, alias.pdf[firstLight + i]]));
+  otherLights.forEach(({ light }, i) => setEmitter(firstLight + i, packLightEmitter(light, alias.pdf[firstLight + i], planarLights.indexOf(light))));
+  planarLights.forEach((light, i) => {
+    const material = addMaterial(packEmitterOnly(lightEmitted(light)));
+    data.set(packPlanarLight(light, material, lightPdfs.get(light) ?? 0), (SECTIONS.planarLights + i * PLANAR_LIGHT.texels) * 4);
   });
   powers.forEach((_, i) => {
     const choice = packRecord(EMITTER_CHOICE, { aliasThreshold: alias.threshold[i], alias: alias.alias[i] });
@@ -139,6 +153,7 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     guideCount: guides.length,
     groundHeight: scene.ground?.height ?? 0,
     groundMaterial,
+    planarLightCount: planarLights.length,
     environment: environment && 'color' in environment ? scale(environment.color, environment.intensity) : [0, 0, 0],
     environmentPdf: environmentPower > 0 ? alias.pdf[emitters.length] : 0,
   });
@@ -155,6 +170,7 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
   const features = {
     guides: guides.length,
     materials: kinds,
+    lights: lightFeatures(scene.lights),
     environmentMap,
     meshes: scene.meshes.length > 0,
     emissiveMeshes: meshEmitters.length > 0,
@@ -163,11 +179,14 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
   return { data, block, features, meshMaterials, meshEmitters: meshEmitters.map(({ mesh, first, count }) => ({ mesh, first, count })) };
 }
 
-/** The scene's spheres in shader order: `spheres`, then `lights` as emitter-only spheres. */
+/** The scene's spheres in shader order: `spheres`, then the sphere lights as emitter-only spheres. */
 function sceneSpheres(scene: Scene): SceneSphere[] {
   return [
     ...scene.spheres.map((s) => ({ center: s.center, radius: s.radius, material: s.material, radiance: emittedRadiance(s.material) })),
-    ...scene.lights.map((l) => ({ center: l.position, radius: l.radius, material: 'emitterOnly' as const, radiance: scale(l.color, l.intensity) })),
+    ...scene.lights.flatMap((l) => {
+      const sphere = lightSphere(l);
+      return sphere ? [{ ...sphere, material: 'emitterOnly' as const, radiance: lightEmitted(l) }] : [];
+    }),
   ];
 }
 
@@ -182,19 +201,29 @@ function power(s: SceneSphere): number {
 
 /**
  * Power of the environment map as pbrt-v4 estimates an infinite light's:
- * pi R^2 times its luminance integrated over the sphere, R the radius of a
- * sphere around the scene's objects and camera (at least 1). 0 when the
- * scene has no map or a black one.
+ * pi R^2 times its luminance integrated over the sphere, R the scene's
+ * radius (sceneRadius). 0 when the scene has no map or a black one.
  */
-function mapEnvironmentPower(scene: Scene, spheres: readonly SceneSphere[], integral = 0): number {
+function mapEnvironmentPower(scene: Scene, radius: number, integral = 0): number {
   const environment = scene.environment;
   if (!environment || !('map' in environment) || !(integral > 0) || !(environment.intensity > 0)) return 0;
-  const points = [scene.camera.position, ...spheres.map((s) => s.center), ...scene.meshes.map((m) => m.position)];
-  const center = [0, 1, 2].map((k) => points.reduce((sum, p) => sum + p[k], 0) / points.length);
-  let radius = 1;
-  for (const p of points) radius = Math.max(radius, Math.hypot(p[0] - center[0], p[1] - center[1], p[2] - center[2]));
-  for (const s of spheres) radius = Math.max(radius, Math.hypot(s.center[0] - center[0], s.center[1] - center[1], s.center[2] - center[2]) + s.radius);
   return Math.PI * radius * radius * integral * environment.intensity;
+}
+
+/**
+ * The radius of a sphere around the scene's objects and camera (at least
+ * 1), about their mean position: what an infinite light's power is
+ * measured over (the environment map's, a directional light's).
+ */
+function sceneRadius(scene: Scene, spheres: readonly SceneSphere[]): number {
+  const others = scene.lights.filter((l) => lightSphere(l) === null).flatMap((l) => lightExtent(l) ?? []);
+  const points = [scene.camera.position, ...spheres.map((s) => s.center), ...scene.meshes.map((m) => m.position), ...others.map((o) => o.center)];
+  const center = [0, 1, 2].map((k) => points.reduce((sum, p) => sum + p[k], 0) / points.length);
+  const away = (p: Vec3) => Math.hypot(p[0] - center[0], p[1] - center[1], p[2] - center[2]);
+  let radius = 1;
+  for (const p of points) radius = Math.max(radius, away(p));
+  for (const s of [...spheres, ...others]) radius = Math.max(radius, away(s.center) + s.radius);
+  return radius;
 }
 
 const luminance = (c: Vec3) => 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];

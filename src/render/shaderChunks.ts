@@ -13,6 +13,7 @@ import type { SceneFeatures } from './packScene';
 import { samplingDefines, type SamplerKind } from './sampling';
 import { bvhDefines } from './bvhTextures';
 import { bsdfDispatchGlsl, MATERIAL_CHUNK_GUARDS, MATERIAL_CHUNK_NAMES, materialDefines, materialFeatureDefines, materialGlsl } from '../materials/registry';
+import { emitterGlsl, LIGHT_CHUNK_GUARDS, LIGHT_CHUNK_NAMES, lightDispatchGlsl, lightFeatureDefines } from '../lights/registry';
 
 /** The chunks every kernel that touches the scene needs. */
 export const SCENE_CHUNK_NAMES = [
@@ -22,6 +23,7 @@ export const SCENE_CHUNK_NAMES = [
   'scene/layout.glsl',
   'generated/records.glsl',
   'generated/materials.glsl',
+  'generated/emitters.glsl',
   'scene/access.glsl',
   'scene/bvh.glsl',
   'scene/instances.glsl',
@@ -32,9 +34,12 @@ export const SCENE_CHUNK_NAMES = [
   ...MATERIAL_CHUNK_NAMES,
   'generated/bsdf_dispatch.glsl',
   'bsdf/bsdf.glsl',
-  'lights/sphere_emitter.glsl',
+  'lights/light_sample.glsl',
+  'lights/planar.glsl',
+  ...LIGHT_CHUNK_NAMES,
   'lights/environment_map.glsl',
   'lights/mesh_emitter.glsl',
+  'generated/light_dispatch.glsl',
   'lights/lights.glsl',
   'lights/caustic_guide.glsl',
 ];
@@ -44,6 +49,8 @@ const GENERATED: Record<string, () => string> = {
   'generated/records.glsl': sceneLayoutGlsl,
   'generated/materials.glsl': materialGlsl,
   'generated/bsdf_dispatch.glsl': bsdfDispatchGlsl,
+  'generated/emitters.glsl': emitterGlsl,
+  'generated/light_dispatch.glsl': lightDispatchGlsl,
 };
 
 /**
@@ -55,7 +62,7 @@ export function assembleChunks(names: readonly string[], source: (name: string) 
   return names.map((name) => {
     const generated = GENERATED[name];
     if (generated) return { name, source: generated() };
-    const guard = MATERIAL_CHUNK_GUARDS.get(name);
+    const guard = MATERIAL_CHUNK_GUARDS.get(name) ?? LIGHT_CHUNK_GUARDS.get(name);
     return guard ? { name, source: `#if ${guard}\n${source(name)}\n#endif`, lineOffset: 1 } : { name, source: source(name) };
   });
 }
@@ -78,6 +85,7 @@ export function featureDefines(features: SceneFeatures): Record<string, number> 
   return {
     CAUSTIC_GUIDES: features.guides,
     ...materialFeatureDefines(features.materials),
+    ...lightFeatureDefines(features.lights),
     HAS_ENV_MAP: features.environmentMap ? 1 : 0,
     HAS_MESHES: features.meshes ? 1 : 0,
     HAS_EMISSIVE_MESHES: features.emissiveMeshes ? 1 : 0,

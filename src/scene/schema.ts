@@ -11,6 +11,7 @@ import * as z from 'zod';
 import {
   allowedOnGround, defaultMaterial, MATERIAL_KEYS, materialSchema, normalizeMaterial, SOLID_DESCRIPTIONS, UNKNOWN_TYPE_MESSAGE,
 } from '../materials/registry';
+import { LIGHT_KEYS, lightSchema, normalizeLight, UNKNOWN_LIGHT_TYPE_MESSAGE } from '../lights/registry';
 import { MAX_BOUNCES, MAX_IMAGE_SIZE, MAX_LIGHTS, MAX_MESHES, MAX_SCENE_BYTES, MAX_SPHERES } from './limits';
 import {
   color, coordinate, emissionShape, integer, intensity, length, MAX_COORDINATE, MAX_INTENSITY, point, shapeError, white,
@@ -118,12 +119,8 @@ const groundMaterial = material.refine(allowedOnGround, {
   message: `must not be ${SOLID_DESCRIPTIONS.join(' or ')} on the ground (a plane has no inside)`,
 }).refine((m) => m.emission === undefined, { path: ['emission'], message: 'is not allowed on the ground' });
 const groundShape = { height: coordinate().default(0), material: groundMaterial };
-const lightShape = {
-  position: point(),
-  radius: length(),
-  color: color(intensity).default(white),
-  intensity: intensity().default(1),
-};
+/** A light by its `type` (absent = the sphere light of version 1), through the light kinds' registry. */
+const light = oneOf<Light>((value) => (lightSchema(value.type) as z.ZodType<Light> | undefined) ?? UNKNOWN_LIGHT_TYPE_MESSAGE);
 const sphereShape = { center: point(), radius: length(), material };
 const positiveScale = () => z.number().gt(0).max(MAX_COORDINATE);
 const meshShape = {
@@ -149,7 +146,7 @@ const sceneShape = {
   render: z.strictObject(renderShape).default(() => ({ maxBounces: 6 })),
   environment: environment.nullable().default(null),
   ground: z.strictObject(groundShape).nullable().default(null),
-  lights: list(z.strictObject(lightShape), MAX_LIGHTS, 'lights'),
+  lights: list(light, MAX_LIGHTS, 'lights'),
   spheres: list(z.strictObject(sphereShape), MAX_SPHERES, 'spheres'),
   meshes: list(z.strictObject(meshShape), MAX_MESHES, 'meshes'),
 };
@@ -168,7 +165,7 @@ const KNOWN_KEYS: Record<string, readonly string[]> = {
   ground: Object.keys(groundShape),
   'ground.material': materialKeys,
   'ground.material.emission': Object.keys(emissionShape),
-  'lights[]': Object.keys(lightShape),
+  'lights[]': LIGHT_KEYS,
   'spheres[]': Object.keys(sphereShape),
   'spheres[].material': materialKeys,
   'spheres[].material.emission': Object.keys(emissionShape),
@@ -438,12 +435,7 @@ const copyMesh = (m: z.output<z.ZodObject<typeof meshShape>>): Mesh => ({
   rotation: vec(m.rotation),
   scale: typeof m.scale === 'number' ? [m.scale, m.scale, m.scale] : vec(m.scale),
 });
-const copyLight = (l: Light): Light => ({
-  position: vec(l.position),
-  radius: l.radius,
-  color: vec(l.color),
-  intensity: num(l.intensity),
-});
+const copyLight = (l: Light): Light => normalizeLight(l as unknown as Record<string, unknown>);
 const copySphere = (s: Sphere): Sphere => ({ center: vec(s.center), radius: s.radius, material: copyMaterial(s.material) });
 const vec = (v: Vec3): Vec3 => [num(v[0]), num(v[1]), num(v[2])];
 const num = (x: number) => (x === 0 ? 0 : x);

@@ -60,12 +60,9 @@ export interface Ground {
   material: Material;
 }
 
-export interface Light {
-  position: Vec3;
-  radius: number;
-  color: Vec3;
-  intensity: number;
-}
+/** A light of any kind (src/lights/: one folder per kind, listed by the registry); version 1's is the sphere. */
+export type { Light, LightType } from '../lights/registry';
+import type { Light } from '../lights/registry';
 
 export interface Sphere {
   center: Vec3;

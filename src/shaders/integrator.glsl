@@ -41,7 +41,9 @@ vec3 sampleDirectLight(Hit hit, mat3 frame, vec3 wo, Bsdf bsdf, vec3 u) {
   bsdfPdf = guidedPdf(bsdfPdf, light.direction);  // BSDF sampling is mixed with the caustic guides
   vec3 origin = spawnRayOrigin(hit, light.direction);
   if (occluded(origin, light.direction, light.distance, light.skipSphere)) return vec3(0.0);
-  return f * light.radiance * (powerHeuristic(light.pdf, bsdfPdf) / light.pdf);
+  // A Dirac delta light is found by this technique alone: no MIS.
+  float weight = light.delta ? 1.0 : powerHeuristic(light.pdf, bsdfPdf);
+  return f * light.radiance * (weight / light.pdf);
 }
 
 // The rest of a path whose camera ray hit `hit` (see scatters), given the

@@ -8,6 +8,7 @@ import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
+import { lightKindOf } from '../../src/lights/registry';
 import {
   MAX_BOUNCES,
   MAX_IMAGE_SIZE,
@@ -123,9 +124,14 @@ function checkScene(scene: Scene): void {
   }
   check(scene.lights.length <= MAX_LIGHTS, 'at most MAX_LIGHTS lights');
   scene.lights.forEach((light, i) => {
-    keys(light, ['position', 'radius', 'color', 'intensity'], `lights[${i}]`);
-    check(vec(light.position, inBox) && vec(light.color, (x) => x >= 0), `lights[${i}] position and color`);
-    check(light.radius > 0 && light.radius <= 1e6 && light.intensity >= 0 && finite(light.intensity), `lights[${i}] radius and intensity`);
+    // Every key of its kind, explicit (beamWidth too: normalizing fills it in).
+    keys(light, ['type', ...Object.keys(lightKindOf(light).shape)], `lights[${i}]`);
+    const l = light as unknown as Record<string, number & Vec3>;
+    check(vec(light.color, (x) => x >= 0) && (!('position' in l) || vec(l.position, inBox)), `lights[${i}] position and color`);
+    check(!('radius' in l) || (l.radius > 0 && l.radius <= 1e6), `lights[${i}] radius`);
+    for (const key of ['intensity', 'irradiance']) check(!(key in l) || (l[key] >= 0 && finite(l[key])), `lights[${i}].${key}`);
+    if (light.type === 'spot') check(light.beamWidth >= 0 && light.beamWidth <= light.cutoffAngle && light.cutoffAngle <= 90, `lights[${i}] spot angles`);
+    if (light.type === 'rectangle') check(light.size.every((x) => x > 0), `lights[${i}].size`);
   });
   check(scene.spheres.length <= MAX_SPHERES, 'at most MAX_SPHERES spheres');
   scene.spheres.forEach((sphere, i) => {

@@ -55,8 +55,8 @@ function thrown(run: () => unknown): SceneError {
 }
 
 describe('valid scenes', () => {
-  it('finds the fourteen fixtures', () => {
-    expect(fixtureNames.sort()).toEqual(['bunny', 'conductor', 'emissive', 'emissive-mesh', 'emissive-tilted-normals', 'envmap', 'furnace', 'glass', 'glossy', 'instanced', 'mirrors', 'principled', 'seed', 'small-light']);
+  it('finds the fifteen fixtures', () => {
+    expect(fixtureNames.sort()).toEqual(['bunny', 'conductor', 'emissive', 'emissive-mesh', 'emissive-tilted-normals', 'envmap', 'furnace', 'glass', 'glossy', 'instanced', 'lights', 'mirrors', 'principled', 'seed', 'small-light']);
   });
 
   it.each(fixtureNames)('parses %s, keeping its values', (name) => {
@@ -123,7 +123,7 @@ describe('valid scenes', () => {
     const defaultMaterial = { type: 'standard', color: [0.8, 0.8, 0.8], roughness: 1 };
     expect(scene.environment).toStrictEqual({ color: [1, 1, 1], intensity: 1 });
     expect(scene.ground).toStrictEqual({ height: 0, material: defaultMaterial });
-    expect(scene.lights).toStrictEqual([{ position: [0, 5, 0], radius: 0.5, color: [1, 1, 1], intensity: 1 }]);
+    expect(scene.lights).toStrictEqual([{ type: 'sphere', position: [0, 5, 0], radius: 0.5, color: [1, 1, 1], intensity: 1 }]);
     expect(scene.spheres.map((s) => s.material)).toStrictEqual([
       defaultMaterial,
       defaultMaterial,
@@ -217,7 +217,7 @@ describe('valid scenes', () => {
 
 describe('presets', () => {
   it('are copies of the fixture scenes (all but those that need map or mesh files)', () => {
-    expect([...PRESET_NAMES].sort()).toEqual(fixtureNames.filter((name) => !['bunny', 'conductor', 'envmap', 'emissive-mesh', 'emissive-tilted-normals', 'instanced', 'principled'].includes(name)).sort());
+    expect([...PRESET_NAMES].sort()).toEqual(fixtureNames.filter((name) => !['bunny', 'conductor', 'envmap', 'emissive-mesh', 'emissive-tilted-normals', 'instanced', 'lights', 'principled'].includes(name)).sort());
     for (const name of PRESET_NAMES) expect(PRESETS[name]).toEqual(fixture(name));
   });
 
