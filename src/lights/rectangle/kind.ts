@@ -23,7 +23,7 @@ export interface RectangleLight {
   intensity: number;
 }
 
-const side = () => z.number({ error: shapeError('must be a number > 0') }).gt(0).max(MAX_COORDINATE);
+const side = () => z.number().gt(0).max(MAX_COORDINATE);
 
 export const rectangle: LightKind<RectangleLight> = {
   type: 'rectangle',
