@@ -21,6 +21,7 @@ import { EnvironmentMaps, MAP_FILE_PATTERN } from './environmentMaps';
 import { bundledMapName } from './bundledMaps';
 import { MAP_EXAMPLES, MESH_EXAMPLES } from './examples';
 import { Panel } from './panel';
+import { LIGHT_TYPE_NAMES, lightLabel, type LightType } from '../lights/registry';
 import { encodePfm } from '../image/pfm';
 import type { RenderStats } from './renderLoop';
 import type { DenoiseState } from './liveDenoise';
@@ -171,7 +172,10 @@ function wireToolbar(app: App, loader: SceneLoader): void {
     });
   });
   click('add-sphere', () => app.addSphere());
-  click('add-light', () => app.addLight());
+  // "+ Light" adds a light of the kind chosen beside it (a sphere unless changed).
+  const lightKind = $<HTMLSelectElement>('light-kind');
+  for (const type of LIGHT_TYPE_NAMES) lightKind.add(new Option(lightLabel(type), type));
+  click('add-light', () => app.addLight(lightKind.value as LightType));
   click('delete', () => app.deleteSelection());
   click('undo', () => app.undo());
   click('redo', () => app.redo());
