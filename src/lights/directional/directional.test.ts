@@ -2,7 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { toMitsubaXml } from '../../scene/mitsuba';
 import { parseScene } from '../../scene/schema';
 import { lightPower } from '../registry';
-import { parseLight, problems, sceneWith } from '../testing';
+import { parseLight, problems, sceneWith } from '../../../test/support/lights';
 
 describe('directional light', () => {
   it('fills its defaults, keeping the direction as given', () => {

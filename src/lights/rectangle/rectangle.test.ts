@@ -3,7 +3,7 @@ import { toMitsubaXml } from '../../scene/mitsuba';
 import { parseScene } from '../../scene/schema';
 import { serializeScene } from '../../scene/serialize';
 import { lightArea, lightPower } from '../registry';
-import { parseLight, problems, sceneWith } from '../testing';
+import { parseLight, problems, sceneWith } from '../../../test/support/lights';
 
 describe('rectangle light', () => {
   it('fills its defaults and round-trips', () => {

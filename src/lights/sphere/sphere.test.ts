@@ -2,7 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { parseScene } from '../../scene/schema';
 import { serializeScene } from '../../scene/serialize';
 import { lightPower } from '../registry';
-import { parseLight, problems, sceneWith } from '../testing';
+import { parseLight, problems, sceneWith } from '../../../test/support/lights';
 
 describe('sphere light (the default kind)', () => {
   it('is what a light without `type` is, in every version; version 1 and 2 documents are written without `type`', () => {

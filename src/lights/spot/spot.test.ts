@@ -3,7 +3,7 @@ import { toMitsubaXml } from '../../scene/mitsuba';
 import { parseScene } from '../../scene/schema';
 import { serializeScene } from '../../scene/serialize';
 import { lightPower } from '../registry';
-import { parseLight, problems, sceneWith } from '../testing';
+import { parseLight, problems, sceneWith } from '../../../test/support/lights';
 import { spotCone, type SpotLight } from './kind';
 
 const spot = { type: 'spot', position: [0, 3, 0], target: [0, 0, 0] };

@@ -1,7 +1,7 @@
 /** Helpers of the light kinds' unit tests (src/lights/<kind>/<kind>.test.ts). */
-import { safeParseScene } from '../scene/schema';
-import type { Scene } from '../scene/types';
-import { parseScene } from '../scene/schema';
+import { safeParseScene } from '../../src/scene/schema';
+import type { Scene } from '../../src/scene/types';
+import { parseScene } from '../../src/scene/schema';
 
 const camera = { position: [0, 1, 5], target: [0, 0, 0] };
 
