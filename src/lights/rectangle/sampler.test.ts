@@ -15,7 +15,7 @@ import { chiSquareTest } from '../../../test/support/chi2';
 import { useRenderSession } from '../../../test/support/browser';
 
 type V = [number, number, number];
-const SIDE = 512; // 262,144 samples per viewpoint
+const SIDE = 256; // 65,536 samples per viewpoint (256 per cell on average)
 const CELLS = 16;
 const ALPHA = 1e-4;
 const [c, u, v]: V[] = [[0, 1, 0], [0.6, 0, 0], [0, 0, 0.3]];
