@@ -95,8 +95,8 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
 
   spheres.forEach((sphere, i) => {
     const material = addMaterial(sphere.material === 'emitterOnly' ? packEmitterOnly(sphere.radiance) : packMaterial(sphere.material, false));
-    const record = packRecord(SPHERE, { center: sphere.center, radius: sphere.radius, material, emitterPdf: emitterPdf.get(i) ?? 0 });
-    data.set(record, (SECTIONS.spheres + i * SPHERE.texels) * 4);
+    data.set([...sphere.center, sphere.radius], (SECTIONS.sphereGeometry + i) * 4);
+    data.set(packRecord(SPHERE, { material, emitterPdf: emitterPdf.get(i) ?? 0 }), (SECTIONS.spheres + i * SPHERE.texels) * 4);
   });
   emitters.forEach(({ index, sphere }, i) => {
     const record = packRecord(EMITTER, {

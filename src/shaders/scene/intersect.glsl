@@ -79,7 +79,7 @@ Hit intersectScene(vec3 origin, vec3 direction) {
 
   // Both surfaces are derived and the right one selected (see sphereHitT).
   SphereRecord record = loadSphere(sphere);
-  vec4 geometry = vec4(record.center, record.radius);
+  vec4 geometry = sphereGeometry(sphere);
   vec3 p = origin + hit.t * direction;
   vec3 sphereNormal = normalize(p - geometry.xyz);
   vec3 spherePosition = geometry.xyz + geometry.w * sphereNormal;  // re-projected onto the surface
