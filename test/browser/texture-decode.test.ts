@@ -72,6 +72,15 @@ describe('texture images in the page\'s Worker', () => {
     }
   });
 
+  it('a JPEG with an EXIF orientation decodes as stored (as Mitsuba reads it), whatever the browser shows', async () => {
+    const plain = await decode(file('smooth.jpg'));
+    for (let orientation = 2; orientation <= 8; orientation++) {
+      const image = await decode(withOrientation(file('smooth.jpg'), orientation));
+      expect([image.width, image.height], `orientation ${orientation}`).toEqual([48, 32]);
+      expect(Buffer.from(image.texels).equals(Buffer.from(plain.texels)), `orientation ${orientation}`).toBe(true);
+    }
+  });
+
   it('a corrupt file comes back as the decoder\'s AssetError', async () => {
     const png = file('smooth.png').slice(0, 60);
     await expect(decode(png)).rejects.toThrow(/^AssetError: corrupt or truncated PNG file/);
@@ -81,6 +90,13 @@ describe('texture images in the page\'s Worker', () => {
     await expect(decode(new TextEncoder().encode('not an image'))).rejects.toThrow(/^AssetError: not a PNG, JPEG, WebP/);
   });
 });
+
+/** The JPEG with an APP1 Exif segment (big-endian TIFF, IFD0 holding only Orientation) after SOI. */
+function withOrientation(jpeg: Uint8Array, orientation: number): Uint8Array {
+  const tiff = [0x4d, 0x4d, 0, 0x2a, 0, 0, 0, 8, 0, 1, 0x01, 0x12, 0, 3, 0, 0, 0, 1, 0, orientation, 0, 0, 0, 0, 0, 0];
+  const body = [...Buffer.from('Exif\0\0', 'latin1'), ...tiff];
+  return Uint8Array.from([0xff, 0xd8, 0xff, 0xe1, (body.length + 2) >> 8, (body.length + 2) & 0xff, ...body, ...jpeg.subarray(2)]);
+}
 
 function mismatches(actual: Uint8Array, expected: Uint8Array, where: (i: number) => boolean): number {
   expect(actual.length).toBe(expected.length);

@@ -263,6 +263,36 @@ describe('JPEG and WebP', () => {
   });
 });
 
+describe('EXIF orientation of JPEGs', () => {
+  /** SOI, APP1 Exif (TIFF in either byte order, IFD0: one unrelated tag, then Orientation), then the rest of `jpeg`. */
+  function withExif(jpeg: Uint8Array, orientation: number, little: boolean): Uint8Array {
+    const u16 = (v: number) => (little ? [v & 0xff, v >> 8] : [v >> 8, v & 0xff]);
+    const u32 = (v: number) => (little ? [v & 0xff, (v >> 8) & 0xff, 0, 0] : [0, 0, (v >> 8) & 0xff, v & 0xff]);
+    const tiff = [...(little ? [0x49, 0x49] : [0x4d, 0x4d]), ...u16(42), ...u32(8), ...u16(2), ...u16(0x010f), ...u16(2), ...u32(4), 0x41, 0x42, 0x43, 0, ...u16(0x0112), ...u16(3), ...u32(1), ...u16(orientation), 0, 0, ...u32(0)];
+    const body = [...new TextEncoder().encode('Exif'), 0, 0, ...tiff];
+    return Uint8Array.from([0xff, 0xd8, 0xff, 0xe1, (body.length + 2) >> 8, (body.length + 2) & 0xff, ...body, ...jpeg.subarray(2)]);
+  }
+
+  /** The stored 3 x 2 image turned a quarter clockwise (orientation 6), as a browser shows it: 2 x 3. */
+  function rotateClockwise(stored: Uint8Array, width: number, height: number): Uint8Array {
+    const out = new Uint8Array(stored.length);
+    for (let y = 0; y < height; y++) for (let x = 0; x < width; x++) out.set(stored.subarray((y * width + x) * 4, (y * width + x) * 4 + 4), (x * height + (height - 1 - y)) * 4);
+    return out;
+  }
+
+  it('is read from either byte order, and a browser bitmap turned by it is turned back to the stored texels', async () => {
+    const stored = Uint8Array.from({ length: 3 * 2 * 4 }, (_, i) => i * 10);
+    const bitmap: BitmapDecoder = async () => ({ width: 2, height: 3, data: rotateClockwise(stored, 3, 2) });
+    for (const little of [true, false]) {
+      const image = await decodeTextureImage(withExif(jpegHeader(3, 2), 6, little), bitmap);
+      expect(image).toMatchObject({ width: 3, height: 2 });
+      expect(Array.from(image.data)).toEqual(Array.from(stored));
+    }
+    // Without the tag the same bitmap has the wrong size for the header.
+    expect(await assetError(decodeTextureImage(jpegHeader(3, 2), bitmap))).toMatch(/decoded this JPEG image as 2x3, where its header says 3x2$/);
+  });
+});
+
 describe('EXR and HDR texture images', () => {
   for (const file of ['gradient-half-zip.exr', 'gradient-float-piz.exr', 'gradient-rle.hdr']) {
     it(`${file} decodes to RGBA float: the environment map decoder's RGB, alpha 1`, async () => {

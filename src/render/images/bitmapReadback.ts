@@ -13,6 +13,7 @@
  * where the image is opaque). The 2D path remains for a Worker without
  * WebGL2.
  */
+import { AssetError } from '../../scene/assetError';
 import type { BitmapDecoder } from '../../scene/texture/image';
 
 export type Readback = 'webgl' | '2d';
@@ -78,10 +79,13 @@ function readWith2d(bitmap: ImageBitmap): DecodedBitmap {
 /** A BitmapDecoder; `readback` '2d' only for the test that measures it. */
 export function bitmapDecoder(readback: Readback = 'webgl'): BitmapDecoder {
   return async (bytes, mime) => {
+    // A failure here is the file's (decodeTextureImage calls it corrupt); one after it is the read-back's.
     const bitmap = await createImageBitmap(new Blob([bytes as Uint8Array<ArrayBuffer>], { type: mime }), { premultiplyAlpha: 'none', colorSpaceConversion: 'none' });
     try {
       const context = readback === 'webgl' ? readbackContext() : null;
       return context ? readWithWebgl(context, bitmap) : readWith2d(bitmap);
+    } catch (error) {
+      throw new AssetError(`the browser decoded this ${bitmap.width}x${bitmap.height} image but could not read its texels back (${(error as Error)?.message ?? String(error)})`);
     } finally {
       bitmap.close();
     }

@@ -13,6 +13,7 @@ import type { EnvironmentImage } from '../types';
 import { imageHeader, readPngHeader, type ImageHeader } from './header';
 import { TEXEL_BYTES, type BitmapDecoder, type TexelEncoding, type TextureImage } from './image';
 import { checkTextureSize, MAX_TEXTURE_BYTES } from './limits';
+import { jpegExifOrientation, swapsSides, undoOrientation } from './orientation';
 
 function fail(message: string): never {
   throw new AssetError(message);
@@ -188,10 +189,14 @@ async function decodeBitmap(bytes: Uint8Array, header: ImageHeader, bitmap: Bitm
     if (error instanceof AssetError) throw error;
     fail(`corrupt or truncated ${format === 'jpeg' ? 'JPEG' : 'WebP'} file (the browser cannot decode it: ${(error as Error)?.message ?? String(error)})`);
   }
-  const { width, height, data } = decoded;
-  if (width !== header.width || height !== header.height) {
-    fail(`the browser decoded this ${format === 'jpeg' ? 'JPEG' : 'WebP'} image as ${width}x${height}, where its header says ${header.width}x${header.height}`);
+  const { width, height } = header;
+  const orientation = format === 'jpeg' ? jpegExifOrientation(bytes) : 1;
+  const [shownWidth, shownHeight] = swapsSides(orientation) ? [height, width] : [width, height];
+  if (decoded.width !== shownWidth || decoded.height !== shownHeight) {
+    fail(`the browser decoded this ${format === 'jpeg' ? 'JPEG' : 'WebP'} image as ${decoded.width}x${decoded.height}, where its header says ${width}x${height}${orientation === 1 ? '' : ` (EXIF orientation ${orientation})`}`);
   }
-  if (data.length !== width * height * 4) fail(`the browser's decoder returned ${data.length} values for ${width}x${height} RGBA`);
+  if (decoded.data.length !== width * height * 4) fail(`the browser's decoder returned ${decoded.data.length} values for ${width}x${height} RGBA`);
+  // Mitsuba reads a JPEG as stored; the browser has applied its EXIF orientation (./orientation.ts).
+  const data = undoOrientation(decoded.data, width, height, orientation);
   return { width, height, format, encoding: 'u8', data };
 }

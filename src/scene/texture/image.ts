@@ -17,7 +17,12 @@ export interface TextureImage {
   data: Uint8Array | Uint16Array | Float32Array; // u8 / u16 / f32
 }
 
-/** Decodes JPEG/WebP (the browser's own decoder); absent in Node. */
+/**
+ * Decodes JPEG/WebP (the browser's own decoder); absent in Node. Returns
+ * RGBA8 unpremultiplied, row 0 at the top, as the browser shows the image
+ * (a JPEG's EXIF orientation applied, as createImageBitmap always does:
+ * decodeTextureImage undoes it).
+ */
 export type BitmapDecoder = (bytes: Uint8Array, mime: string) => Promise<{ width: number; height: number; data: Uint8Array }>;
 
 /** Bytes per texel of each encoding (4 channels). */
