@@ -58,6 +58,21 @@ function makePng({ width, height, colorType, depth, rows, extra = [], interlace 
   return new Uint8Array(png);
 }
 
+/** The scanlines of Adam7's seven passes (PNG specification, 8.2), each pass a sub-image of every (dx, dy)-th texel from (x0, y0). */
+function adam7Rows(rows: Uint8Array[], width: number, height: number, bytesPerTexel: number): Uint8Array[] {
+  const passes = [[0, 0, 8, 8], [4, 0, 8, 8], [0, 4, 4, 8], [2, 0, 4, 4], [0, 2, 2, 4], [1, 0, 2, 2], [0, 1, 1, 2]];
+  const out: Uint8Array[] = [];
+  for (const [x0, y0, dx, dy] of passes) {
+    if (x0 >= width) continue;
+    for (let y = y0; y < height; y += dy) {
+      const texels: number[] = [];
+      for (let x = x0; x < width; x += dx) texels.push(...rows[y].subarray(x * bytesPerTexel, (x + 1) * bytesPerTexel));
+      out.push(Uint8Array.from(texels));
+    }
+  }
+  return out;
+}
+
 /** 16-bit samples as PNG stores them (big-endian). */
 function be16(values: number[]): Uint8Array {
   const out = new Uint8Array(values.length * 2);
@@ -156,11 +171,15 @@ describe('PNG texture images', () => {
     expect(Array.from(g.data)).toEqual([513, 513, 513, 1000, 65535, 65535, 65535, 2]);
   });
 
-  it('an interlaced (Adam7) 8-bit PNG from pngjs-equivalent rows decodes like the plain one', async () => {
-    // Adam7 of a 1x1 image is the single pixel in pass 1: the same scanline.
-    const plain = await decodeTextureImage(makePng({ width: 1, height: 1, colorType: 6, depth: 8, rows: [Uint8Array.of(1, 2, 3, 4)] }));
-    const laced = await decodeTextureImage(makePng({ width: 1, height: 1, colorType: 6, depth: 8, rows: [Uint8Array.of(1, 2, 3, 4)], interlace: 1 }));
-    expect(Array.from(laced.data)).toEqual(Array.from(plain.data));
+  it('an interlaced (Adam7) PNG decodes like the plain one (8-bit RGBA, 16-bit grey)', async () => {
+    for (const [colorType, depth, bytesPerTexel] of [[6, 8, 4], [0, 16, 2]]) {
+      const width = 11;
+      const height = 9;
+      const texels = Array.from({ length: height }, (_, y) => Uint8Array.from({ length: width * bytesPerTexel }, (_, i) => (i * 29 + y * 71 + 5) & 0xff));
+      const plain = await decodeTextureImage(makePng({ width, height, colorType, depth, rows: texels }));
+      const laced = await decodeTextureImage(makePng({ width, height, colorType, depth, rows: adam7Rows(texels, width, height, bytesPerTexel), interlace: 1 }));
+      expect(Array.from(laced.data), `colour type ${colorType}, ${depth} bits`).toEqual(Array.from(plain.data));
+    }
     const message = await assetError(decodeTextureImage(makePng({ width: 1, height: 1, colorType: 0, depth: 1, rows: [Uint8Array.of(0x80)], interlace: 1 })));
     expect(message).toMatch(/interlaced PNG files with 1 bits a channel are not supported/);
   });
