@@ -6,13 +6,15 @@
  * sphere whose material emits is also an emitter. Light sampling picks an
  * emitter in proportion to its power through an alias table.
  */
-import { materialFeatures, packEmitterOnly, packMaterial } from '../materials/registry';
+import { materialFeatures, materialSeeThrough, materialTextures, packEmitterOnly, packMaterial, type MaterialTexture } from '../materials/registry';
+import { CHANNELS, type TextureInput } from '../scene/texture/texture';
+import { ATLAS_FORMATS, type AtlasFormat, type Placement } from './textures/atlas';
 import type { Material, Scene, Vec3 } from '../scene/types';
 import { buildAliasTable } from './aliasTable';
 import type { MeshGroups } from './bvh/groups';
 import { selectCausticGuides, type GuideSphere } from './causticGuides';
 import {
-  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MESH, SECTIONS, SPHERE,
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MAX_TEXTURES, MESH, SECTIONS, SPHERE, TEXTURE,
 } from './layout/scene';
 import { packRecord } from './layout/records';
 
@@ -29,6 +31,12 @@ export interface SceneFeatures {
   emissiveMeshes: boolean;
   /** Files named by several meshes, stored once and instanced (src/render/bvh/groups.ts). */
   instances: boolean;
+  /** The atlas formats the scene's textures use (textures/texture.glsl compiles a sampler for each). */
+  textureFormats: readonly AtlasFormat[];
+  /** Materials that let light through (opacity below 1 or an opacity texture): the pass-through code. */
+  seeThrough: boolean;
+  /** Normal maps (the tangent frame and Mitsuba's normalmap adapter). */
+  normalMaps: boolean;
 }
 
 /** A scene with nothing optional: spheres of the default material under a constant sky. */
@@ -39,6 +47,9 @@ export const BASE_FEATURES: SceneFeatures = {
   meshes: false,
   emissiveMeshes: false,
   instances: false,
+  textureFormats: [],
+  seeThrough: false,
+  normalMaps: false,
 };
 
 /** What packing needs to know of the scene's decoded files. */
@@ -49,6 +60,8 @@ export interface PackOptions {
   meshes?: readonly { area: number; triangles: number }[];
   /** How the meshes are stored (src/render/bvh/groups.ts), as the BVH was built: instances need their shader code. */
   groups?: MeshGroups;
+  /** Where a texture's image is in the atlas (src/render/textures/atlas.ts), for the inputs it feeds. */
+  placement?: (image: string, input: TextureInput) => Placement;
 }
 
 /** The emissive-triangle slots of an emissive mesh (see layout/scene.ts EMITTER). */
@@ -80,6 +93,8 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
   const block = new Float32Array(BLOCK_VEC4S * 4);
   const materials: Float32Array[] = [];
   const addMaterial = (record: Float32Array) => materials.push(record) - 1;
+  const textures = new TextureTable(data, options.placement);
+  const textureIndex = (t: MaterialTexture) => textures.index(t);
 
   const spheres = sceneSpheres(scene);
   const emitters = spheres.flatMap((s, index) => (power(s) > 0 ? [{ index, sphere: s }] : []));
@@ -123,8 +138,8 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     const choice = packRecord(EMITTER_CHOICE, { aliasThreshold: alias.threshold[i], alias: alias.alias[i] });
     data.set(choice, (SECTIONS.emitterChoices + i * EMITTER_CHOICE.texels) * 4);
   });
-  const groundMaterial = scene.ground ? addMaterial(packMaterial(scene.ground.material, false)) : 0;
-  const meshMaterials = scene.meshes.map((mesh) => addMaterial(packMaterial(mesh.material, true)));
+  const groundMaterial = scene.ground ? addMaterial(packMaterial(scene.ground.material, false, textureIndex)) : 0;
+  const meshMaterials = scene.meshes.map((mesh) => addMaterial(packMaterial(mesh.material, true, textureIndex)));
   materials.forEach((record, i) => data.set(record, (SECTIONS.materials + i * MATERIAL.texels) * 4));
 
   const areaPdfs = new Map(meshEmitters.map((m, i) => [m.mesh, alias.pdf[firstMesh + i] / m.area]));
@@ -150,7 +165,8 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     block.set([...spheres[mirror].center, spheres[mirror].radius], base + GUIDE_FIELDS.MIRROR * 4);
     block.set([...spheres[light].center, spheres[light].radius], base + GUIDE_FIELDS.LIGHT * 4);
   });
-  const kinds = materialFeatures([...scene.spheres, ...scene.meshes, ...(scene.ground ? [scene.ground] : [])].map((o) => o.material));
+  const sceneMaterials = [...scene.spheres, ...scene.meshes, ...(scene.ground ? [scene.ground] : [])].map((o) => o.material);
+  const kinds = materialFeatures(sceneMaterials);
   const environmentMap = environment !== null && 'map' in environment;
   const features = {
     guides: guides.length,
@@ -159,6 +175,9 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     meshes: scene.meshes.length > 0,
     emissiveMeshes: meshEmitters.length > 0,
     instances: (options.groups?.shared.length ?? 0) > 0,
+    textureFormats: ATLAS_FORMATS.filter((f) => textures.formats.has(f)),
+    seeThrough: sceneMaterials.some(materialSeeThrough),
+    normalMaps: sceneMaterials.some((m) => materialTextures(m).some((t) => t.input === 'normal')),
   };
   return { data, block, features, meshMaterials, meshEmitters: meshEmitters.map(({ mesh, first, count }) => ({ mesh, first, count })) };
 }
@@ -217,3 +236,40 @@ function emissiveMeshes(scene: Scene, sizes: readonly { area: number; triangles:
 }
 
 const scale = (v: Vec3, s: number): Vec3 => [v[0] * s, v[1] * s, v[2] * s];
+
+/**
+ * The texture table (layout/scene.ts TEXTURE): one record per distinct
+ * texture and input, written as materials ask for their index.
+ */
+class TextureTable {
+  private readonly indices = new Map<string, number>();
+  readonly formats = new Set<AtlasFormat>();
+
+  constructor(
+    private readonly data: Float32Array,
+    private readonly placement?: (image: string, input: TextureInput) => Placement,
+  ) {}
+
+  index({ texture: t, input }: MaterialTexture): number {
+    const key = JSON.stringify([t, input]);
+    const known = this.indices.get(key);
+    if (known !== undefined) return known;
+    if (!this.placement) throw new Error(`packScene: ${t.image} is not placed (pass options.placement)`);
+    const i = this.indices.size;
+    if (i >= MAX_TEXTURES) throw new Error(`a scene reads at most ${MAX_TEXTURES} distinct textures`);
+    const p = this.placement(t.image, input);
+    this.formats.add(p.format);
+    const r = (t.uv.rotation * Math.PI) / 180;
+    const [sx, sy] = t.uv.scale;
+    const [ox, oy] = t.uv.offset;
+    const record = packRecord(TEXTURE, {
+      placement: [ATLAS_FORMATS.indexOf(p.format), p.layer, p.x, p.y],
+      size: [p.width, p.height, input === 'scalar' ? CHANNELS.indexOf(t.channel) : -1, t.cutoff ?? -1],
+      uRow: [Math.cos(r) * sx, Math.sin(r) * sy, ox, input === 'normal' ? (t.scale as number) : 0],
+      vRow: [-Math.sin(r) * sx, Math.cos(r) * sy, oy, 0],
+    });
+    this.data.set(record, (SECTIONS.textures + i * TEXTURE.texels) * 4);
+    this.indices.set(key, i);
+    return i;
+  }
+}

@@ -12,7 +12,8 @@ import { sceneLayoutDefines, sceneLayoutGlsl } from './layout/scene';
 import type { SceneFeatures } from './packScene';
 import { samplingDefines, type SamplerKind } from './sampling';
 import { bvhDefines } from './bvhTextures';
-import { bsdfDispatchGlsl, MATERIAL_CHUNK_GUARDS, MATERIAL_CHUNK_NAMES, materialDefines, materialFeatureDefines, materialGlsl } from '../materials/registry';
+import { ATLAS_FORMATS } from './textures/atlas';
+import { bsdfDispatchGlsl, surfaceInputsGlsl, MATERIAL_CHUNK_GUARDS, MATERIAL_CHUNK_NAMES, materialDefines, materialFeatureDefines, materialGlsl } from '../materials/registry';
 
 /** The chunks every kernel that touches the scene needs. */
 export const SCENE_CHUNK_NAMES = [
@@ -26,6 +27,8 @@ export const SCENE_CHUNK_NAMES = [
   'scene/bvh.glsl',
   'scene/instances.glsl',
   'scene/intersect.glsl',
+  'textures/texture.glsl',
+  'generated/surface_inputs.glsl',
   'surface.glsl',
   'bsdf/ggx.glsl',
   'bsdf/fresnel.glsl',
@@ -44,6 +47,7 @@ const GENERATED: Record<string, () => string> = {
   'generated/records.glsl': sceneLayoutGlsl,
   'generated/materials.glsl': materialGlsl,
   'generated/bsdf_dispatch.glsl': bsdfDispatchGlsl,
+  'generated/surface_inputs.glsl': () => `#if HAS_SURFACE_INPUTS\n${surfaceInputsGlsl()}\n#endif`,
 };
 
 /**
@@ -73,11 +77,19 @@ export function sceneDefines(sampler: SamplerKind = 'kronecker', russianRoulette
   };
 }
 
+/** Whether the program reads the materials' surface inputs (textures, opacity). */
+const surfaceInputs = (f: SceneFeatures) => f.textureFormats.length > 0 || f.seeThrough;
+
 /** The feature switches of one program variant. */
 export function featureDefines(features: SceneFeatures): Record<string, number> {
   return {
     CAUSTIC_GUIDES: features.guides,
-    ...materialFeatureDefines(features.materials),
+    ...materialFeatureDefines(features.materials, surfaceInputs(features)),
+    HAS_SURFACE_INPUTS: surfaceInputs(features) ? 1 : 0,
+    HAS_TEXTURES: features.textureFormats.length > 0 ? 1 : 0,
+    ...Object.fromEntries(ATLAS_FORMATS.map((f) => [`HAS_TEXTURES_${f.toUpperCase()}`, features.textureFormats.includes(f) ? 1 : 0])),
+    HAS_SEE_THROUGH: features.seeThrough ? 1 : 0,
+    HAS_NORMAL_MAPS: features.normalMaps ? 1 : 0,
     HAS_ENV_MAP: features.environmentMap ? 1 : 0,
     HAS_MESHES: features.meshes ? 1 : 0,
     HAS_EMISSIVE_MESHES: features.emissiveMeshes ? 1 : 0,

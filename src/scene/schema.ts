@@ -9,7 +9,7 @@
  */
 import * as z from 'zod';
 import {
-  allowedOnGround, defaultMaterial, MATERIAL_KEYS, materialSchema, normalizeMaterial, SOLID_DESCRIPTIONS, UNKNOWN_TYPE_MESSAGE,
+  allowedOnGround, defaultMaterial, materialTextures, MATERIAL_KEYS, materialSchema, normalizeMaterial, SOLID_DESCRIPTIONS, UNKNOWN_TYPE_MESSAGE,
 } from '../materials/registry';
 import { MAX_BOUNCES, MAX_IMAGE_SIZE, MAX_LIGHTS, MAX_MESHES, MAX_SCENE_BYTES, MAX_SPHERES } from './limits';
 import {
@@ -124,7 +124,11 @@ const lightShape = {
   color: color(intensity).default(white),
   intensity: intensity().default(1),
 };
-const sphereShape = { center: point(), radius: length(), material };
+/** Spheres have no texture coordinates (the format's rule), so no textures. */
+const sphereMaterial = material.superRefine((m, ctx) => {
+  for (const t of materialTextures(m)) ctx.addIssue({ code: 'custom', path: [t.key], message: 'cannot be a texture on a sphere (spheres have no texture coordinates)' });
+});
+const sphereShape = { center: point(), radius: length(), material: sphereMaterial };
 const positiveScale = () => z.number().gt(0).max(MAX_COORDINATE);
 const meshShape = {
   file: z.string().min(1, 'must name a file').max(4096),

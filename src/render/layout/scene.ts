@@ -106,6 +106,23 @@ export const MAX_GUIDES = 2;
 export const GUIDE_FIELDS = { MIRROR: 0, LIGHT: 1 } as const;
 export const GUIDE_VEC4S = Object.keys(GUIDE_FIELDS).length;
 
+/**
+ * A texture a material reads (textures/texture.glsl), one per distinct
+ * texture and input: where its image is (format 0 srgb8, 1 linear8, 2
+ * float; the page of that format's atlas array; the corner there), its size
+ * as stored, the channel a scalar reads (-1: RGB) and its cutoff (-1:
+ * none), and the `uv` transform's rows (u' = dot(uRow.xyz, (u, v, 1)),
+ * likewise v'), a normal map's scale in uRow.w.
+ */
+export const TEXTURE = defineRecord('TextureRecord', [
+  ['placement', 'vec4'],
+  ['size', 'vec4'],
+  ['uRow', 'vec4'],
+  ['vRow', 'vec4'],
+]);
+/** Distinct textures a scene may read. */
+export const MAX_TEXTURES = 512;
+
 /** Lights become spheres; each sphere, light, mesh and the ground has its own material. */
 export const MAX_SCENE_SPHERES = MAX_SPHERES + MAX_LIGHTS;
 export const MAX_MATERIALS = MAX_SCENE_SPHERES + MAX_MESHES + 1;
@@ -121,6 +138,7 @@ const TABLES = [
   ['emitters', MAX_EMITTERS * EMITTER.texels],
   ['emitterChoices', MAX_EMITTERS * EMITTER_CHOICE.texels],
   ['meshes', MAX_MESHES * MESH.texels],
+  ['textures', MAX_TEXTURES * TEXTURE.texels],
 ] as const;
 type Table = (typeof TABLES)[number][0];
 /** First texel of each table in the data texture. */
@@ -156,6 +174,7 @@ export function sceneLayoutDefines(): Record<string, number> {
     ...recordDefines(EMITTER),
     ...recordDefines(EMITTER_CHOICE),
     ...recordDefines(MESH),
+    ...recordDefines(TEXTURE),
     ...recordDefines(INSTANCE),
     ...tagDefines('EMITTER', EMITTER_KINDS),
     SPHERE_GEOMETRY_FIRST: SECTIONS.sphereGeometry,
@@ -164,6 +183,7 @@ export function sceneLayoutDefines(): Record<string, number> {
     EMITTERS_FIRST: SECTIONS.emitters,
     EMITTER_CHOICES_FIRST: SECTIONS.emitterChoices,
     MESHES_FIRST: SECTIONS.meshes,
+    TEXTURES_FIRST: SECTIONS.textures,
     SCENE_ROW_TEXELS,
     SCENE_ROW_BITS,
     MAX_SCENE_SPHERES,
@@ -178,7 +198,7 @@ export function sceneLayoutDefines(): Record<string, number> {
 
 /** The generated GLSL: a struct and a loader per record (see records.ts). */
 export function sceneLayoutGlsl(): string {
-  const tables: RecordLayout[] = [SPHERE, EMITTER, EMITTER_CHOICE, MESH];
+  const tables: RecordLayout[] = [SPHERE, EMITTER, EMITTER_CHOICE, MESH, TEXTURE];
   return [
     '// Generated from src/render/layout/scene.ts: do not edit.',
     ...tables.map((layout) => recordGlsl(layout, 'sceneData')),
