@@ -13,6 +13,7 @@ import { describe, expect, it } from 'vitest';
 import { Document, WebIO } from '@gltf-transform/core';
 import { AssetError } from '../../src/scene/assetError';
 import { applyMatrixToTangents, decodeMesh, transformMesh } from '../../src/scene/mesh';
+import { loadMikkTSpace } from '../../src/scene/mesh/mikktspace';
 import { meshTangents } from '../../src/scene/mesh/tangents';
 import type { TriangleMesh } from '../../src/scene/types';
 
@@ -167,6 +168,13 @@ describe('MikkTSpace tangents (meshTangents)', () => {
       expect(dot(scale(cross(n, t), w), unit(scale(dpdv, -1)))).toBeGreaterThan(0.5);
       expect(dot(t, unit(dpdu))).toBeGreaterThan(0.5);
     }
+  });
+
+  it("the WebAssembly's own error (no triangles) comes back as an Error with its message, and it keeps working after; its raw w is the opposite of glTF's here", async () => {
+    const generate = await loadMikkTSpace();
+    expect(() => generate(new Float32Array(0), new Float32Array(0), new Float32Array(0))).toThrow(/Failed to generate tangents/);
+    // Raw MikkTSpace: dp/du = +x, dp/dv = -y, n = +z; its cross(n, t) * w is dp/dv (w = -1): meshTangents negates w.
+    expect([...generate(Float32Array.from([0, 0, 0, 1, 0, 0, 0, 1, 0]), Float32Array.from([0, 0, 1, 0, 0, 1, 0, 0, 1]), Float32Array.from([0, 1, 1, 1, 0, 0]))]).toEqual([1, 0, 0, -1, 1, 0, 0, -1, 1, 0, 0, -1]);
   });
 
   it('an empty mesh has an empty frame array', async () => {

@@ -19,22 +19,7 @@
  * worker there (Node and workers are fine).
  */
 import type { TriangleMesh } from '../types';
-
-type GenerateTangents = (positions: Float32Array, normals: Float32Array, uvs: Float32Array) => Float32Array;
-
-let generator: Promise<GenerateTangents> | null = null;
-
-/** The MikkTSpace WebAssembly, loaded once (a chunk of its own: only scenes with normal maps pay for it). */
-function loadMikkTSpace(): Promise<GenerateTangents> {
-  generator ??= import('mikktspace').then(
-    (module) => module.generateTangents,
-    (error: unknown) => {
-      throw new Error(`cannot compute tangent frames: the MikkTSpace WebAssembly cannot run here (${(error as Error)?.message ?? String(error)})`);
-    },
-  );
-  generator.catch(() => (generator = null)); // a failed load may be retried
-  return generator;
-}
+import { loadMikkTSpace, type GenerateTangents } from './mikktspace';
 
 /**
  * The tangent frame at every triangle corner of `mesh`, for its normal map:
@@ -85,7 +70,7 @@ function mikkTSpaceCorners(mesh: TriangleMesh, generate: GenerateTangents): Floa
   try {
     tangents = generate(positions, normals, uvs);
   } catch (error) {
-    // It throws a string ("Failed to generate tangents.") where the C code returns false (out of memory).
+    // "Failed to generate tangents." where the C code returns false (out of memory).
     throw new Error(`MikkTSpace failed on ${mesh.indices.length / 3} triangles: ${(error as Error)?.message ?? String(error)}`);
   }
   if (tangents.length !== mesh.indices.length * 4) throw new Error(`MikkTSpace returned ${tangents.length / 4} tangents for ${mesh.indices.length} triangle corners`);
