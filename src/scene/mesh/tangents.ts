@@ -7,12 +7,14 @@
  * computes it, the reference algorithm (the `mikktspace` package: the
  * gltf-rs port of Mikkelsen's C code, compiled to WebAssembly).
  *
- * Never computed on load: it costs a second or more on a million triangles,
- * so the renderer asks only for the meshes whose material has a normal map.
- * Measured in Node 22 on one core of the CI machine (see the report in
- * tangents.test.ts's benchmark, `TANGENT_BENCH=1`): the bunny (69,451
- * triangles) 0.20 s, a 1,000,000-triangle grid 2.4 s, 90% of it in the
- * WebAssembly (the JS de-indexing and checks around it: ~0.2 s).
+ * Never computed on load: it costs about 10 us a triangle, linear in the
+ * count, so the renderer asks only for the meshes whose material has a
+ * normal map. `npx tsx bench/tangents.ts` (Node 20, one thread, on the
+ * shared 2-core machine at load average ~5): node_modules/bunny (3,674
+ * triangles) 0.03 s, a 70,000-triangle smooth sphere (the Stanford bunny's
+ * size) 0.45 s, 1,000,000 triangles 11.9 s, 90% of it inside the
+ * WebAssembly (the de-indexing and checks here: ~1 s); a flat 980,000-triangle
+ * grid at load ~2.7: 9.8 s in the WebAssembly alone.
  *
  * The WebAssembly cannot compile on the page's main thread (its
  * Content-Security-Policy has no 'wasm-unsafe-eval'): call this from a
