@@ -148,6 +148,15 @@ describe('MikkTSpace tangents (meshTangents)', () => {
     );
   });
 
+  it('texCoord 1 runs on the second set of coordinates', async () => {
+    const mesh = quad(minusY, X, [0, 1], [1, 0], true); // normal +z; set 0: u along +x
+    const second = quad(minusY, X, [-1, 0], [0, 1], true); // set 1: u along +y (e1 = -y), v along +x (up the image: -x)
+    const tangents = (await meshTangents({ ...mesh, uvs1: second.uvs }, 1))!;
+    expectGltfFrame(second, tangents);
+    expect([...tangents.subarray(0, 4)]).toEqual([0, 1, 0, 1]); // cross(+z, +y) = -x, up the image
+    expect(await meshTangents(mesh, 1)).toBeNull();
+  });
+
   it('a mesh without texture coordinates has no frame (null), with or without a given TANGENT', async () => {
     const mesh = quad(X, minusY, [1, 0], [0, 1], true);
     expect(await meshTangents({ ...mesh, uvs: null })).toBeNull();

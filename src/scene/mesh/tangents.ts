@@ -39,14 +39,17 @@ import { loadMikkTSpace, type GenerateTangents } from './mikktspace';
  * - Corners whose frame MikkTSpace cannot define (every triangle around them
  *   has zero uv area) get an arbitrary unit x orthogonal to n and w = 1, never NaN.
  * - null when the mesh has no texture coordinates (no normal map can be looked up).
+ * - `texCoord` 1: MikkTSpace on `uvs1` instead (a glTF normalTexture with
+ *   `texCoord: 1`; a file's TANGENT is used as given either way).
  *
  * The shader must still make the interpolated x orthogonal to the
  * interpolated normal (Gram-Schmidt) before use.
  */
-export async function meshTangents(mesh: TriangleMesh): Promise<Float32Array | null> {
-  if (!mesh.uvs) return null;
+export async function meshTangents(mesh: TriangleMesh, texCoord: 0 | 1 = 0): Promise<Float32Array | null> {
+  const uvs = (texCoord === 1 ? mesh.uvs1 : mesh.uvs) ?? null;
+  if (!uvs) return null;
   const given = mesh.tangents ?? null;
-  const out = given && everyCornerGiven(mesh.indices, given) ? new Float32Array(mesh.indices.length * 4) : mikkTSpaceCorners(mesh, await loadMikkTSpace());
+  const out = given && everyCornerGiven(mesh.indices, given) ? new Float32Array(mesh.indices.length * 4) : mikkTSpaceCorners(mesh, uvs, await loadMikkTSpace());
   if (given) overlayGiven(mesh.indices, given, out);
   return out;
 }
@@ -65,9 +68,9 @@ function overlayGiven(indices: Uint32Array, tangents: Float32Array, out: Float32
 }
 
 /** MikkTSpace over the de-indexed triangles (it needs them unwelded; it welds identical corners itself). */
-function mikkTSpaceCorners(mesh: TriangleMesh, generate: GenerateTangents): Float32Array {
+function mikkTSpaceCorners(mesh: TriangleMesh, uv: Float32Array, generate: GenerateTangents): Float32Array {
   if (mesh.indices.length === 0) return new Float32Array(0); // MikkTSpace fails on no triangles
-  const { positions, normals, uvs } = cornerAttributes(mesh);
+  const { positions, normals, uvs } = cornerAttributes(mesh, uv);
   let tangents: Float32Array;
   try {
     tangents = generate(positions, normals, uvs);
@@ -85,9 +88,8 @@ function mikkTSpaceCorners(mesh: TriangleMesh, generate: GenerateTangents): Floa
 }
 
 /** Positions, shading normals and uvs per corner (3, 3 and 2 floats). */
-function cornerAttributes(mesh: TriangleMesh): { positions: Float32Array; normals: Float32Array; uvs: Float32Array } {
+function cornerAttributes(mesh: TriangleMesh, uv: Float32Array): { positions: Float32Array; normals: Float32Array; uvs: Float32Array } {
   const { indices, positions: p, normals: n } = mesh;
-  const uv = mesh.uvs!;
   const positions = new Float32Array(indices.length * 3);
   const normals = new Float32Array(indices.length * 3);
   const uvs = new Float32Array(indices.length * 2);
