@@ -35,7 +35,8 @@ import { loadMikkTSpace, type GenerateTangents } from './mikktspace';
  *   vertex normal, or the face normal where the mesh is flat or the normal
  *   is zero) within float rounding; w is +1 or -1; bitangent =
  *   cross(n, x) * w points toward decreasing v.
- * - A vertex's given tangent (`mesh.tangents`, w != 0) is returned as given.
+ * - A vertex's given tangent (`mesh.tangents`, w != 0) is returned as given
+ *   (unit, w = +-1, but only as orthogonal to the normal as the file made it).
  * - Corners whose frame MikkTSpace cannot define (every triangle around them
  *   has zero uv area) get an arbitrary unit x orthogonal to n and w = 1, never NaN.
  * - null when the mesh has no texture coordinates (no normal map can be looked up).
