@@ -92,6 +92,9 @@ const SCENES: Record<string, { spp: number; block?: number; worstBlock?: number;
   // named metals, given eta and k, smooth and rough, a rough tinted metal ground.
   conductor: { spp: 512, referenceSpp: 4096 },
   principled: { spp: 256, referenceSpp: 4096 },
+  // Textures (baseColor, roughness and metallic from images, the uv
+  // transform on the ground) and a normal map on a flat, unmirrored box.
+  textured: { spp: 256, referenceSpp: 4096 },
 };
 const BATCHES = 8;
 

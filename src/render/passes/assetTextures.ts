@@ -21,6 +21,9 @@ import { INSTANCE } from '../layout/scene';
 import { BvhTextures } from '../bvhTextures';
 import type { MeshEmitterSlots } from '../packScene';
 import { EnvironmentTextures } from '../environmentTextures';
+import { TextureAtlas } from '../textures/textureAtlas';
+import { materialTextures } from '../../materials/registry';
+import type { TextureImage } from '../../scene/texture/image';
 import type { Program } from '../gl/program';
 import { createDataTexture, uploadDataTexture } from '../gl/dataTexture';
 import { ENVIRONMENT_UNITS, TEXTURE_UNITS } from '../gl/textureUnits';
@@ -48,7 +51,17 @@ export class AssetTextures {
     instances: InstanceTable | null;
   } | null = null;
 
-  constructor(private readonly gl: WebGL2RenderingContext) {}
+  readonly textures: TextureAtlas;
+
+  constructor(private readonly gl: WebGL2RenderingContext) {
+    this.textures = new TextureAtlas(gl);
+  }
+
+  /** Uploads the images the scene's materials read (unless the atlas holds exactly these). */
+  setTextures(scene: Scene, images: ReadonlyMap<string, TextureImage>): void {
+    const materials = [...(scene.ground ? [scene.ground.material] : []), ...scene.meshes.map((m) => m.material)];
+    this.textures.set(materials.flatMap((m) => materialTextures(m).map((t) => ({ image: t.texture.image, input: t.input }))), images);
+  }
 
   /** Uploads `image` (and its distribution) unless it is the one already uploaded; null frees it. */
   setEnvironmentMap(image: EnvironmentImage | null): void {
@@ -102,10 +115,12 @@ export class AssetTextures {
     this.bvh?.textures.bind(program, TEXTURE_UNITS.bvh);
     this.bvh?.emissive.table?.bind(program, TEXTURE_UNITS.emissiveTriangles);
     this.bvh?.instances?.bind(program, TEXTURE_UNITS.instances);
+    this.textures.bind(program);
   }
 
   dispose(): void {
     this.setEnvironmentMap(null);
+    this.textures.dispose();
     this.bvh?.textures.dispose();
     this.bvh?.emissive.table?.dispose();
     this.bvh?.instances?.dispose();

@@ -5,6 +5,7 @@ import { Program } from '../gl/program';
 import { TEXTURE_UNITS } from '../gl/textureUnits';
 import type { PingPong } from '../gl/targets';
 import { missingAssets, type SceneAssets } from '../../scene/assets';
+import type { TextureInput } from '../../scene/texture/texture';
 import { SceneError } from '../../scene/schema';
 import { BLOCK_VEC4S, DATA_ROWS, SCENE_ROW_TEXELS } from '../layout/scene';
 import { AssetTextures, environmentDistribution } from './assetTextures';
@@ -111,7 +112,9 @@ export class TracePass {
     this.assets.setEnvironmentMap(map);
     const world = (this.world = prepareWorldMeshes(scene, assets, this.world));
     const environmentIntegral = map ? environmentDistribution(map).integral : undefined;
-    const packed = packScene(scene, { environmentIntegral, meshes: world.sizes, groups: world.groups });
+    this.assets.setTextures(scene, assets.images ?? new Map());
+    const placement = (image: string, input: TextureInput) => this.assets.textures.placement(image, input);
+    const packed = packScene(scene, { environmentIntegral, meshes: world.sizes, groups: world.groups, placement });
     this.assets.setMeshes(world, packed.meshEmitters, bvh);
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
     gl.bufferSubData(gl.UNIFORM_BUFFER, 0, packed.block);

@@ -18,6 +18,9 @@ struct Hit {
   vec3 geometricNormal;  // offsets spawned rays (equal to `normal` but on smooth meshes)
   vec2 uv;          // texture coordinates: triangles' interpolated from their corners ((0, 0)
                     // without), the ground's world (x, z), spheres' (0, 0)
+  vec4 tangent;     // normal maps: xyz along increasing u, w = 1 or -1 so that
+                    // cross(normal, xyz) * w points up the image (toward decreasing v);
+                    // xyz 0 without texture coordinates
   float scale;      // size of the hit object, for the self-intersection offset
   vec4 geometry;    // the sphere hit: [center, radius]
   int material;     // index into the material table
@@ -92,6 +95,7 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   hit.emitterPdf = isGround ? 0.0 : record.emitterPdf;
   hit.geometricNormal = hit.normal;
   hit.uv = isGround ? groundPosition.xz : vec2(0.0);
+  hit.tangent = vec4(isGround ? vec3(1.0, 0.0, 0.0) : vec3(0.0), 1.0);  // the ground: u = x, v = z
 #if HAS_MESHES
   MeshHit triangle;
   if (meshClosestHit(origin, direction, hit.t, triangle)) {
@@ -102,6 +106,10 @@ Hit intersectScene(vec3 origin, vec3 direction) {
     hit.normal = s.shadingNormal;
     hit.geometricNormal = s.geometricNormal;
     hit.uv = s.uv;
+#if HAS_NORMAL_MAPS
+    // glTF's rule: the bitangent points up the image, also on a mirrored chart.
+    hit.tangent = vec4(s.dpdu, dot(cross(s.shadingNormal, s.dpdu), s.dpdv) > 0.0 ? -1.0 : 1.0);
+#endif
     hit.scale = 0.0;
     MeshRecord mesh = loadMesh(s.mesh);
     hit.material = mesh.materialBase + s.localMaterial;
