@@ -55,8 +55,8 @@ function thrown(run: () => unknown): SceneError {
 }
 
 describe('valid scenes', () => {
-  it('finds the fourteen fixtures', () => {
-    expect(fixtureNames.sort()).toEqual(['bunny', 'conductor', 'emissive', 'emissive-mesh', 'emissive-tilted-normals', 'envmap', 'furnace', 'glass', 'glossy', 'instanced', 'mirrors', 'principled', 'seed', 'small-light']);
+  it('finds the fifteen fixtures', () => {
+    expect(fixtureNames.sort()).toEqual(['bunny', 'conductor', 'emissive', 'emissive-mesh', 'emissive-tilted-normals', 'envmap', 'furnace', 'glass', 'glossy', 'instanced', 'mirrors', 'principled', 'seed', 'small-light', 'textured']);
   });
 
   it.each(fixtureNames)('parses %s, keeping its values', (name) => {
@@ -217,7 +217,7 @@ describe('valid scenes', () => {
 
 describe('presets', () => {
   it('are copies of the fixture scenes (all but those that need map or mesh files)', () => {
-    expect([...PRESET_NAMES].sort()).toEqual(fixtureNames.filter((name) => !['bunny', 'conductor', 'envmap', 'emissive-mesh', 'emissive-tilted-normals', 'instanced', 'principled'].includes(name)).sort());
+    expect([...PRESET_NAMES].sort()).toEqual(fixtureNames.filter((name) => !['bunny', 'conductor', 'envmap', 'emissive-mesh', 'emissive-tilted-normals', 'instanced', 'principled', 'textured'].includes(name)).sort());
     for (const name of PRESET_NAMES) expect(PRESETS[name]).toEqual(fixture(name));
   });
 
