@@ -158,6 +158,22 @@ export function materialTextures(m: Material): MaterialTexture[] {
   return out;
 }
 
+/** The switch of a kind's texture slot (HAS_TEXTURE_<KIND>_<KEY>): compiled only when some material textures it. */
+export const textureSlotDefine = (type: string, key: string) => `HAS_TEXTURE_${upperName(type)}_${upperName(key)}`;
+
+/** The texture slots a scene's materials use, as their switches' names. */
+export function textureSlotFeatures(materials: Iterable<Material>): string[] {
+  const used = new Set<string>();
+  for (const m of materials) for (const t of materialTextures(m)) used.add(textureSlotDefine(m.type, t.key));
+  return [...used].sort();
+}
+
+/** Every texture slot's switch, 1 where `used` names it. */
+export function textureSlotDefines(used: readonly string[]): Record<string, number> {
+  const all = KINDS.flatMap((k) => (k.textures ?? []).map((slot) => textureSlotDefine(k.type, slot.key)));
+  return Object.fromEntries(all.map((name) => [name, used.includes(name) ? 1 : 0]));
+}
+
 /** Whether a material lets light through anywhere (opacity below 1, or an opacity texture). */
 export function materialSeeThrough(m: Material): boolean {
   const opacity = kindOf(m).opacity?.(m) ?? 1;
@@ -323,11 +339,16 @@ export function surfaceInputsGlsl(): string {
   };
   const perKind = (body: (k: MaterialKind<Material>) => string[], otherwise: string) =>
     [...kinds.map((k) => `  if (materialType(m) == MATERIAL_${upperName(k.type)}) {\n${body(k).map((l) => `    ${l}`).join('\n')}\n  }`), `  ${otherwise}`].join('\n');
+  // Each slot compiled only where the scene textures it (SwiftShader runs masked blocks too).
   const apply = (k: MaterialKind<Material>) =>
-    (k.textures ?? []).map((slot) => {
+    (k.textures ?? []).flatMap((slot) => {
       const field = LAYOUTS.get(k.type)!.fields.find((f) => f.name === slot.key)!;
       const lookup = slot.input === 'color' ? 'textureColor' : 'textureScalar';
-      return `{ int t = int(${surfaceField(k, textureField(slot.key))}); if (t >= 0) ${fieldRead(field, 'b.')} *= ${lookup}(t, uv); }`;
+      return [
+        `#if ${textureSlotDefine(k.type, slot.key)}`,
+        `{ int t = int(${surfaceField(k, textureField(slot.key))}); if (t >= 0) ${fieldRead(field, 'b.')} *= ${lookup}(t, uv); }`,
+        '#endif',
+      ];
     });
   const opacity = (k: MaterialKind<Material>) =>
     k.opacity

@@ -6,7 +6,7 @@
  * sphere whose material emits is also an emitter. Light sampling picks an
  * emitter in proportion to its power through an alias table.
  */
-import { materialFeatures, materialSeeThrough, materialTextures, packEmitterOnly, packMaterial, type MaterialTexture } from '../materials/registry';
+import { materialFeatures, materialSeeThrough, materialTextures, textureSlotFeatures, packEmitterOnly, packMaterial, type MaterialTexture } from '../materials/registry';
 import { CHANNELS, type TextureInput } from '../scene/texture/texture';
 import { ATLAS_FORMATS, type AtlasFormat, type Placement } from './textures/atlas';
 import type { Material, Scene, Vec3 } from '../scene/types';
@@ -37,6 +37,8 @@ export interface SceneFeatures {
   seeThrough: boolean;
   /** Normal maps (the tangent frame and Mitsuba's normalmap adapter). */
   normalMaps: boolean;
+  /** The texture slots some material uses (registry's textureSlotDefine names): only those are compiled. */
+  textureSlots: readonly string[];
 }
 
 /** A scene with nothing optional: spheres of the default material under a constant sky. */
@@ -50,6 +52,7 @@ export const BASE_FEATURES: SceneFeatures = {
   textureFormats: [],
   seeThrough: false,
   normalMaps: false,
+  textureSlots: [],
 };
 
 /** What packing needs to know of the scene's decoded files. */
@@ -178,6 +181,7 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     textureFormats: ATLAS_FORMATS.filter((f) => textures.formats.has(f)),
     seeThrough: sceneMaterials.some(materialSeeThrough),
     normalMaps: sceneMaterials.some((m) => materialTextures(m).some((t) => t.input === 'normal')),
+    textureSlots: textureSlotFeatures(sceneMaterials),
   };
   return { data, block, features, meshMaterials, meshEmitters: meshEmitters.map(({ mesh, first, count }) => ({ mesh, first, count })) };
 }
