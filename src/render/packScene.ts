@@ -63,6 +63,8 @@ export interface PackOptions {
   meshes?: readonly { area: number; triangles: number }[];
   /** How the meshes are stored (src/render/bvh/groups.ts), as the BVH was built: instances need their shader code. */
   groups?: MeshGroups;
+  /** Textured emissions: each emissive mesh's area-weighted mean of its texture's luminance (records.ts areaMean), by mesh index. */
+  emissionScale?: ReadonlyMap<number, number>;
   /** Where a texture's image is in the atlas (src/render/textures/atlas.ts), for the inputs it feeds. */
   placement?: (image: string, input: TextureInput) => Placement;
 }
@@ -102,7 +104,7 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
   const spheres = sceneSpheres(scene);
   const emitters = spheres.flatMap((s, index) => (power(s) > 0 ? [{ index, sphere: s }] : []));
   const environmentPower = mapEnvironmentPower(scene, spheres, options.environmentIntegral);
-  const meshEmitters = emissiveMeshes(scene, options.meshes ?? []);
+  const meshEmitters = emissiveMeshes(scene, options.meshes ?? [], options.emissionScale);
   const powers = [
     ...emitters.map((e) => power(e.sphere)),
     ...(environmentPower > 0 ? [environmentPower] : []),
@@ -226,12 +228,13 @@ const luminance = (c: Vec3) => 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
  * Meshes whose material emits, with their power (pi * area * luminance: one
  * side emits) and their triangles' slots in the emissive-triangle texture.
  */
-function emissiveMeshes(scene: Scene, sizes: readonly { area: number; triangles: number }[]) {
+function emissiveMeshes(scene: Scene, sizes: readonly { area: number; triangles: number }[], emissionScale?: ReadonlyMap<number, number>) {
   let first = 0;
   return scene.meshes.flatMap((mesh, i) => {
     const radiance = emittedRadiance(mesh.material);
     const size = sizes[i];
-    const power = size ? Math.PI * size.area * luminance(radiance) : 0;
+    const textured = mesh.material.emission?.texture ? (emissionScale?.get(i) ?? 1) : 1;
+    const power = size ? Math.PI * size.area * luminance(radiance) * textured : 0;
     if (!(power > 0)) return [];
     const slots = { mesh: i, first, count: size.triangles, area: size.area, power, radiance };
     first += size.triangles;

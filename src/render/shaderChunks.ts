@@ -91,6 +91,7 @@ export function featureDefines(features: SceneFeatures): Record<string, number> 
     HAS_SEE_THROUGH: features.seeThrough ? 1 : 0,
     HAS_NORMAL_MAPS: features.normalMaps ? 1 : 0,
     ...textureSlotDefines(features.textureSlots),
+    HAS_TEXTURED_EMISSION: features.textureSlots.some((s) => s.endsWith('_EMISSION')) && features.emissiveMeshes ? 1 : 0,
     HAS_ENV_MAP: features.environmentMap ? 1 : 0,
     HAS_MESHES: features.meshes ? 1 : 0,
     HAS_EMISSIVE_MESHES: features.emissiveMeshes ? 1 : 0,
