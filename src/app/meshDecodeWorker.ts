@@ -14,7 +14,7 @@ if ('WorkerGlobalScope' in globalThis && typeof document === 'undefined') {
     const { id, bytes, fileName } = event.data;
     try {
       const mesh = await decodeMesh(bytes, fileName);
-      const transfer = [mesh.positions, mesh.indices, mesh.normals, mesh.uvs, mesh.uvs1].filter((a) => a != null).map((a) => a.buffer as ArrayBuffer);
+      const transfer = [mesh.positions, mesh.indices, mesh.normals, mesh.uvs, mesh.uvs1, mesh.tangents].filter((a) => a != null).map((a) => a.buffer as ArrayBuffer);
       self.postMessage({ id, mesh } satisfies DecodeResponse, { transfer: [...new Set(transfer)] });
     } catch (error) {
       self.postMessage({ id, error: (error as Error)?.message ?? String(error), assetError: error instanceof AssetError } satisfies DecodeResponse);

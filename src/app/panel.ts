@@ -125,7 +125,8 @@ export class Panel {
       set color(v: string) { app.live(() => colored().set(hexToLinear(v))); },
     }, 'color'));
     this.tracked(folder.add({
-      get roughness() { return material().roughness; },
+      // A texture's value shows as its scale; a number set here replaces it.
+      get roughness() { const r = material().roughness; return typeof r === 'number' ? r : (r?.scale as number) ?? 0; },
       set roughness(v: number) { app.live(() => (material().roughness = v)); },
     }, 'roughness', 0, 1, 0.01));
   }

@@ -9,6 +9,7 @@ import { AssetError } from '../scene/assetError';
 import { assetReferences, loadSceneAssets, NO_ASSETS, type AssetReader, type SceneAssets } from '../scene/assets';
 import { bundledMapBytes, bundledMapName } from './bundledMaps';
 import { decodeMap } from './mapDecoder';
+import { decodeImageOffThread } from '../render/images/decodeImages';
 import { SceneError, type SafeParseResult, type SceneIssue } from '../scene/schema';
 import type { EnvironmentImage, Scene } from '../scene/types';
 
@@ -38,7 +39,7 @@ export async function resolveAssets(scene: Scene, files: CompanionFiles, known: 
   // The models are decoded (and checked) even when the map failed: every unusable file is reported at once.
   const rest = maps.issues.length ? { ...scene, environment: null } : scene;
   try {
-    const assets = await loadSceneAssets(rest, read, { maps: maps.maps, meshes: known.meshes });
+    const assets = await loadSceneAssets(rest, read, { maps: maps.maps, meshes: known.meshes, images: known.images }, decodeImageOffThread);
     return maps.issues.length ? { ok: false, issues: maps.issues } : { ok: true, assets };
   } catch (error) {
     if (error instanceof SceneError) return { ok: false, issues: [...maps.issues, ...error.issues] };

@@ -27,7 +27,21 @@
 import type * as z from 'zod';
 import type { FieldType, RecordValues } from '../render/layout/records';
 import type { XmlNode } from '../scene/mitsubaXml';
+import type { Texture, TextureInput } from '../scene/texture/texture';
 import type { Emission, Vec3 } from '../scene/types';
+
+/** A material input that may be a texture (src/scene/texture/texture.ts). */
+export interface TextureSlot {
+  /** The material's key. */
+  key: string;
+  /** A color (RGB, 8-bit images sRGB-decoded) or a scalar (one channel as stored). */
+  input: 'color' | 'scalar';
+}
+
+/** How the Mitsuba exporter writes a texture: a `bitmap` of the baked image (factor x texture, sRGB decoded, one channel for scalars) beside the XML. */
+export interface MitsubaTextures {
+  bitmap(name: string, texture: Texture, input: TextureInput): XmlNode;
+}
 
 /** Range of an index of refraction inside a solid (the scene format's, for every kind that has one). */
 export const MIN_IOR = 1.01;
@@ -87,8 +101,22 @@ export interface MaterialKind<M extends MaterialBase = MaterialBase> {
   readonly solid: (m: M) => boolean;
   /** When `solid` can be true, what makes it so, for the ground's error message (the kind's `type` in quotes, and when). */
   readonly solidWhen?: string;
-  /** Mitsuba's BSDF for it (wrapped in `twosided` on meshes unless `solid`). */
-  readonly mitsuba: (m: M) => XmlNode;
+  /** Mitsuba's BSDF for it (wrapped in `twosided` on meshes unless `solid`, and in the registry's `normalmap` and `mask` adapters). */
+  readonly mitsuba: (m: M, textures: MitsubaTextures) => XmlNode;
+  /**
+   * The inputs that may be textures. Each gets a texture index in the
+   * record (the registry's, after the kind's fields); the kind's own field
+   * holds the constant, or the texture's scale, which surface.glsl
+   * multiplies by the lookup. Only the kinds whose inputs are listed here
+   * accept textures.
+   */
+  readonly textures?: readonly TextureSlot[];
+  /** Its opacity (1: opaque), when the kind has one: a cut-out or see-through surface (Mitsuba's `mask`). */
+  readonly opacity?: (m: M) => number | Texture;
+  /** Whether its emission's color may be a texture (version 3). */
+  readonly texturedEmission?: boolean;
+  /** Its normal map, when the kind has one (Mitsuba's `normalmap`). */
+  readonly normalMap?: (m: M) => Texture | undefined;
   /** The page's controls for its keys. */
   readonly controls: readonly MaterialControl[];
   /** What switching `current` (of another kind) to this kind gives; the registry keeps the emission. */

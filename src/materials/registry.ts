@@ -11,12 +11,14 @@
  */
 import * as z from 'zod';
 import { defineRecord, fieldRead, packRecord, type RecordLayout } from '../render/layout/records';
-import { el } from '../scene/mitsubaXml';
-import { emission } from '../scene/schemaParts';
+import { el, float } from '../scene/mitsubaXml';
+import { emission, emissionShape, intensity } from '../scene/schemaParts';
+import { color } from '../scene/schemaParts';
+import { isTexture, scaleColor, texturable, textureJson, type Texture, type TextureInput } from '../scene/texture/texture';
 import type { Emission, Vec3 } from '../scene/types';
 import { conductor, type ConductorMaterial } from './conductor/kind';
 import { dielectric, type DielectricMaterial } from './dielectric/kind';
-import type { MaterialControl, MaterialKind } from './kind';
+import type { MaterialControl, MaterialKind, MitsubaTextures } from './kind';
 import { principled, type PrincipledMaterial } from './principled/kind';
 import { standard, type StandardMaterial } from './standard/kind';
 
@@ -44,10 +46,13 @@ export function defaultMaterial(): Material {
 
 // ---------------------------------------------------------------- schema
 
+/** An emission whose color may be a texture (the kinds with texturedEmission). */
+const texturedEmission = z.strictObject({ ...emissionShape, color: texturable(color(intensity), 'color').default((): Vec3 => [1, 1, 1]) }).optional();
+
 const schemas = new Map<string, z.ZodType<unknown>>(
   KINDS.map((kind) => {
     const type = kind === DEFAULT_KIND ? z.literal(kind.type).default(kind.type) : z.literal(kind.type);
-    const schema = z.strictObject({ type, ...kind.shape, emission }).superRefine((parsed, ctx) => {
+    const schema = z.strictObject({ type, ...kind.shape, emission: kind.texturedEmission ? texturedEmission : emission }).superRefine((parsed, ctx) => {
       for (const [key, message] of kind.check?.(parsed) ?? []) ctx.addIssue({ code: 'custom', path: [key], message });
     });
     return [kind.type, schema as z.ZodType<unknown>] as const;
@@ -69,8 +74,11 @@ export const MATERIAL_KEYS: readonly string[] = [...new Set(['type', ...KINDS.fl
 export function normalizeMaterial(parsed: Record<string, unknown>): Material {
   const kind = kindOf(parsed as { type: string });
   const material = clean(kind.normalize(parsed)) as Material;
-  const e = parsed.emission as Emission | undefined;
-  if (e) material.emission = { color: clean(e.color) as Vec3, intensity: clean(e.intensity) as number };
+  const e = parsed.emission as { color: Vec3 | Texture; intensity: number } | undefined;
+  if (e && isTexture(e.color)) {
+    const texture = clean(e.color) as Texture;
+    material.emission = { color: scaleColor(texture), intensity: clean(e.intensity) as number, texture };
+  } else if (e) material.emission = { color: clean(e.color) as Vec3, intensity: clean(e.intensity) as number };
   return material;
 }
 
@@ -100,16 +108,89 @@ export function typeVersion(type: unknown): number | undefined {
 /** Scene JSON of a material, every value explicit; a version-1 document has no `type` key. */
 export function materialJson(m: Material, version: number): Record<string, unknown> {
   const keys = kindOf(m).json(m);
-  const e = m.emission ? { emission: { color: [...m.emission.color], intensity: m.emission.intensity } } : {};
+  const color = m.emission?.texture ? textureJson(m.emission.texture, 'color') : [...(m.emission?.color ?? [])];
+  const e = m.emission ? { emission: { color, intensity: m.emission.intensity } } : {};
   return version === 1 ? keys : { type: m.type, ...keys, ...e };
 }
 
 // ---------------------------------------------------------------- Mitsuba
 
-/** Mitsuba's BSDF of a material, one-sided (spheres and the ground). */
-export const materialBsdf = (m: Material) => kindOf(m).mitsuba(m);
-/** ... on a mesh: two-sided unless the boundary of a solid (the format's sidedness rule). */
-export const meshBsdf = (m: Material) => (kindOf(m).solid(m) ? materialBsdf(m) : el('bsdf', { type: 'twosided' }, [materialBsdf(m)]));
+/** For materials without textures: any texture is an error. */
+export const NO_MITSUBA_TEXTURES: MitsubaTextures = {
+  bitmap: (name) => {
+    throw new Error(`the Mitsuba export of a texture (${name}) needs the exporter's image baking`);
+  },
+};
+
+/**
+ * Mitsuba's BSDF of a material: the kind's, inside the `normalmap` adapter
+ * when it has a normal map, `twosided` on a mesh unless the boundary of a
+ * solid (the format's sidedness rule: so the back side keeps the normal
+ * map's tilt), and `mask` outermost when it is not opaque.
+ */
+export function materialBsdf(m: Material, textures: MitsubaTextures = NO_MITSUBA_TEXTURES, onMesh = false) {
+  const kind = kindOf(m);
+  let bsdf = kind.mitsuba(m, textures);
+  const normalMap = kind.normalMap?.(m);
+  if (normalMap) bsdf = el('bsdf', { type: 'normalmap' }, [textures.bitmap('normalmap', normalMap, 'normal'), bsdf]);
+  if (onMesh && !kind.solid(m)) bsdf = el('bsdf', { type: 'twosided' }, [bsdf]);
+  const opacity = kind.opacity?.(m) ?? 1;
+  if (opacity !== 1) bsdf = el('bsdf', { type: 'mask' }, [isTexture(opacity) ? textures.bitmap('opacity', opacity, 'scalar') : float('opacity', opacity), bsdf]);
+  return bsdf;
+}
+/** ... on a mesh. */
+export const meshBsdf = (m: Material, textures: MitsubaTextures = NO_MITSUBA_TEXTURES) => materialBsdf(m, textures, true);
+
+// ---------------------------------------------------------------- textures
+
+/** A texture a material reads, with its key and the input it feeds. */
+export interface MaterialTexture {
+  /** Its slot: a key of the kind's, or "emission" (the emission's color). */
+  key: string;
+  /** Where it is in the material's JSON (["emission", "color"] for the emission's). */
+  path: string[];
+  texture: Texture;
+  input: TextureInput;
+}
+
+/** The textures of a material: its kind's texture slots that hold one, its opacity's and its normal map. */
+export function materialTextures(m: Material): MaterialTexture[] {
+  const kind = kindOf(m);
+  const values = m as unknown as Record<string, unknown>;
+  const out: MaterialTexture[] = [];
+  for (const slot of kind.textures ?? []) {
+    const value = values[slot.key];
+    if (isTexture(value)) out.push({ key: slot.key, path: [slot.key], texture: value, input: slot.input });
+  }
+  const opacity = kind.opacity?.(m);
+  if (isTexture(opacity)) out.push({ key: 'opacity', path: ['opacity'], texture: opacity, input: 'scalar' });
+  const normalMap = kind.normalMap?.(m);
+  if (normalMap) out.push({ key: 'normalMap', path: ['normalMap'], texture: normalMap, input: 'normal' });
+  if (m.emission?.texture) out.push({ key: 'emission', path: ['emission', 'color'], texture: m.emission.texture, input: 'color' });
+  return out;
+}
+
+/** The switch of a kind's texture slot (HAS_TEXTURE_<KIND>_<KEY>): compiled only when some material textures it. */
+export const textureSlotDefine = (type: string, key: string) => `HAS_TEXTURE_${upperName(type)}_${upperName(key)}`;
+
+/** The texture slots a scene's materials use, as their switches' names. */
+export function textureSlotFeatures(materials: Iterable<Material>): string[] {
+  const used = new Set<string>();
+  for (const m of materials) for (const t of materialTextures(m)) used.add(textureSlotDefine(m.type, t.key));
+  return [...used].sort();
+}
+
+/** Every texture slot's switch, 1 where `used` names it. */
+export function textureSlotDefines(used: readonly string[]): Record<string, number> {
+  const all = KINDS.flatMap((k) => [...(k.textures ?? []).map((slot) => slot.key), ...(k.texturedEmission ? ['emission'] : [])].map((key) => textureSlotDefine(k.type, key)));
+  return Object.fromEntries(all.map((name) => [name, used.includes(name) ? 1 : 0]));
+}
+
+/** Whether a material lets light through anywhere (opacity below 1, or an opacity texture). */
+export function materialSeeThrough(m: Material): boolean {
+  const opacity = kindOf(m).opacity?.(m) ?? 1;
+  return isTexture(opacity) || opacity < 1;
+}
 
 // ---------------------------------------------------------------- page
 
@@ -155,24 +236,58 @@ const TAG_MASK = 15;
 const FLAG_TWO_SIDED = 16;
 
 const LAYOUTS = new Map<string, RecordLayout>(KINDS.map((k) => [k.type, defineRecord(`${capitalized(k.type)}Material`, [...HEADER_FIELDS, ...k.fields])]));
+
+/** Texture-slot keys of a kind whose inputs may be textures: its slots, then its opacity's and normal map's. */
+const slotKeys = (k: MaterialKind<Material>) => [
+  ...(k.textures ?? []).map((t) => t.key),
+  ...(k.opacity ? ['opacity'] : []),
+  ...(k.normalMap ? ['normalMap'] : []),
+  ...(k.texturedEmission ? ['emission'] : []),
+];
+const textureField = (key: string) => `texture${key[0].toUpperCase()}${key.slice(1)}`;
+/**
+ * The record's surface inputs, for kinds that have any: after the kind's
+ * fields, from a texel of their own (fetched only by programs whose scene
+ * has textures or see-through materials): the opacity, then each slot's
+ * texture index (-1: none; the texture table of textures/texture.glsl).
+ */
+const SURFACE_LAYOUTS = new Map<string, RecordLayout>(
+  KINDS.filter((k) => slotKeys(k).length > 0).map((k) => [
+    k.type,
+    defineRecord(`${capitalized(k.type)}Surface`, [['opacity', 'float'], ...slotKeys(k).map((key): [string, 'float'] => [textureField(key), 'float'])]),
+  ]),
+);
+/** Texels of a kind's record: its fields', then (withSurface) its surface inputs'. */
+const recordTexels = (type: string, withSurface: boolean) => LAYOUTS.get(type)!.texels + (withSurface ? (SURFACE_LAYOUTS.get(type)?.texels ?? 0) : 0);
 /** Texels per material record: the largest kind's. */
-export const MATERIAL_TEXELS = Math.max(...[...LAYOUTS.values()].map((l) => l.texels));
+export const MATERIAL_TEXELS = Math.max(...KINDS.map((k) => recordTexels(k.type, true)));
 
 /**
  * The record of a material. `twoSided`: the integrator turns the shading
  * frame towards the viewer (Mitsuba's `twosided`), written where the
  * material is on a mesh and is not a solid's boundary.
  */
-export function packMaterial(m: Material, onMesh: boolean): Float32Array {
+export function packMaterial(m: Material, onMesh: boolean, textureIndex: (t: MaterialTexture) => number = noTextures): Float32Array {
   const kind = kindOf(m);
   const flags = onMesh && !kind.solid(m) ? FLAG_TWO_SIDED : 0;
   const e = m.emission;
   const emitted: Vec3 = e ? [e.color[0] * e.intensity, e.color[1] * e.intensity, e.color[2] * e.intensity] : [0, 0, 0];
-  const record = packRecord(LAYOUTS.get(m.type)!, { emission: emitted, type: MATERIAL_TAGS[m.type] + flags, ...kind.pack(m) });
+  const layout = LAYOUTS.get(m.type)!;
+  const record = packRecord(layout, { emission: emitted, type: MATERIAL_TAGS[m.type] + flags, ...kind.pack(m) });
   const out = new Float32Array(MATERIAL_TEXELS * 4);
   out.set(record);
+  const surface = SURFACE_LAYOUTS.get(m.type);
+  if (surface) {
+    const opacity = kind.opacity?.(m) ?? 1;
+    const indices: Record<string, number> = Object.fromEntries(slotKeys(kind).map((key) => [textureField(key), -1]));
+    for (const t of materialTextures(m)) indices[textureField(t.key)] = textureIndex(t);
+    out.set(packRecord(surface, { opacity: isTexture(opacity) ? (opacity.scale as number) : opacity, ...indices }), layout.texels * 4);
+  }
   return out;
 }
+const noTextures = (t: MaterialTexture): number => {
+  throw new Error(`packMaterial: no texture table for ${t.key}`);
+};
 
 /** A record read back into its kind's named fields (`type` the kind, or "emitterOnly"), for tests and tools. */
 export function unpackMaterial(record: Float32Array): Record<string, number | number[] | string | boolean> {
@@ -205,12 +320,16 @@ export function materialFeatures(materials: Iterable<Material>): string[] {
 /** Every kind but the default: the test kernels compile them all. */
 export const ALL_MATERIAL_FEATURES: readonly string[] = MATERIAL_TYPE_NAMES.filter((t) => t !== DEFAULT_KIND.type);
 
-/** HAS_<KIND> per kind, and how many texels of a record the loader fetches (the largest used kind's). */
-export function materialFeatureDefines(features: readonly string[]): Record<string, number> {
+/**
+ * HAS_<KIND> per kind, and how many texels of a record the loader fetches:
+ * the largest used kind's, with its surface inputs only when the scene has
+ * textures or see-through materials (`surfaceInputs`).
+ */
+export function materialFeatureDefines(features: readonly string[], surfaceInputs = false): Record<string, number> {
   const used = [DEFAULT_KIND.type, ...features];
   return {
     ...Object.fromEntries(KINDS.filter((k) => k !== DEFAULT_KIND).map((k) => [`HAS_${upperName(k.type)}`, features.includes(k.type) ? 1 : 0])),
-    MATERIAL_FETCHED_TEXELS: Math.max(...used.map((t) => LAYOUTS.get(t)!.texels)),
+    MATERIAL_FETCHED_TEXELS: Math.max(...used.map((t) => recordTexels(t, surfaceInputs))),
   };
 }
 
@@ -222,6 +341,53 @@ export function materialDefines(): Record<string, number> {
     MATERIAL_TAG_MASK: TAG_MASK,
     MATERIAL_FLAG_TWO_SIDED: FLAG_TWO_SIDED,
   };
+}
+
+/**
+ * The surface inputs in GLSL (compiled under HAS_SURFACE_INPUTS, after
+ * textures/texture.glsl): a material's opacity and normal-map texture, and
+ * its textured BSDF inputs multiplied in, at a point.
+ */
+export function surfaceInputsGlsl(): string {
+  const kinds = KINDS.filter((k) => SURFACE_LAYOUTS.has(k.type));
+  const surfaceField = (k: MaterialKind<Material>, name: string) => {
+    const f = SURFACE_LAYOUTS.get(k.type)!.fields.find((x) => x.name === name)!;
+    return fieldRead({ ...f, texel: f.texel + LAYOUTS.get(k.type)!.texels }, 'm.');
+  };
+  const perKind = (body: (k: MaterialKind<Material>) => string[], otherwise: string) =>
+    [...kinds.map((k) => `  if (materialType(m) == MATERIAL_${upperName(k.type)}) {\n${body(k).map((l) => `    ${l}`).join('\n')}\n  }`), `  ${otherwise}`].join('\n');
+  // Each slot compiled only where the scene textures it (SwiftShader runs masked blocks too).
+  const apply = (k: MaterialKind<Material>) =>
+    (k.textures ?? []).flatMap((slot) => {
+      const field = LAYOUTS.get(k.type)!.fields.find((f) => f.name === slot.key)!;
+      const lookup = slot.input === 'color' ? 'textureColor' : 'textureScalar';
+      return [
+        `#if ${textureSlotDefine(k.type, slot.key)}`,
+        `{ int t = int(${surfaceField(k, textureField(slot.key))}); if (t >= 0) ${fieldRead(field, 'b.')} *= ${lookup}(t, uv); }`,
+        '#endif',
+      ];
+    });
+  const opacity = (k: MaterialKind<Material>) =>
+    k.opacity
+      ? [`float o = ${surfaceField(k, 'opacity')};`, `int t = int(${surfaceField(k, textureField('opacity'))});`, 'return t >= 0 ? o * textureScalar(t, uv) : o;']
+      : ['return 1.0;'];
+  const normalMap = (k: MaterialKind<Material>) => [`return ${k.normalMap ? `int(${surfaceField(k, textureField('normalMap'))})` : '-1'};`];
+  const emissionAt = (k: MaterialKind<Material>) =>
+    k.texturedEmission
+      ? [
+          `#if ${textureSlotDefine(k.type, 'emission')}`,
+          `{ int t = int(${surfaceField(k, textureField('emission'))}); if (t >= 0) return materialEmission(m) * textureColor(t, uv); }`,
+          '#endif',
+          'return materialEmission(m);',
+        ]
+      : ['return materialEmission(m);'];
+  return [
+    '// Generated from src/materials/registry.ts: do not edit.',
+    `// The opacity at uv (1: opaque).\nfloat materialOpacity(Material m, vec2 uv) {\n${perKind(opacity, 'return 1.0;')}\n}`,
+    `// The normal map's texture (-1: none).\nint materialNormalMap(Material m) {\n${perKind(normalMap, 'return -1;')}\n}`,
+    `// The emitted radiance at uv (the record's, times its texture where the color is one).\nvec3 materialEmissionAt(Material m, vec2 uv) {\n${perKind(emissionAt, 'return materialEmission(m);')}\n}`,
+    `// The textured inputs of b (the record's constants, or their textures' scales) times their lookups at uv.\nvoid applyMaterialTextures(inout Bsdf b, Material m, vec2 uv) {\n${perKind((k) => [...apply(k), 'return;'], 'return;')}\n}`,
+  ].join('\n');
 }
 
 /** The kinds' GLSL chunks, in KINDS order. */

@@ -11,6 +11,7 @@
  * Node or DOM API): the page bundles it too.
  */
 import type { SceneAssets } from '../scene/assets';
+import type { TextureImage } from '../scene/texture/image';
 import type { EnvironmentImage, TriangleMesh } from '../scene/types';
 
 const ARRAY_TYPES = {
@@ -41,11 +42,12 @@ export interface AssetManifest {
   /** By name as written in the scene; typed arrays replaced by ArrayRefs. */
   maps: [string, unknown][];
   meshes: [string, unknown][];
+  images: [string, unknown][];
 }
 
 /** Whether there is anything to transfer. */
 export function hasAssets(assets: SceneAssets | undefined): assets is SceneAssets {
-  return !!assets && (assets.maps.size > 0 || assets.meshes.size > 0);
+  return !!assets && (assets.maps.size > 0 || assets.meshes.size > 0 || (assets.images?.size ?? 0) > 0);
 }
 
 /** The block and its manifest (`url` left empty for the caller to fill in). */
@@ -68,9 +70,10 @@ export function packAssets(assets: SceneAssets): { manifest: AssetManifest; byte
   };
   const maps = [...assets.maps].map(([name, map]): [string, unknown] => [name, encode(map)]);
   const meshes = [...assets.meshes].map(([name, mesh]): [string, unknown] => [name, encode(mesh)]);
+  const images = [...(assets.images ?? [])].map(([name, image]): [string, unknown] => [name, encode(image)]);
   const bytes = new Uint8Array(byteLength);
   for (const { view, offset } of arrays) bytes.set(new Uint8Array(view.buffer, view.byteOffset, view.byteLength), offset);
-  return { manifest: { url: '', byteLength, maps, meshes }, bytes };
+  return { manifest: { url: '', byteLength, maps, meshes, images }, bytes };
 }
 
 /**
@@ -92,5 +95,6 @@ export function unpackAssets(manifest: AssetManifest, block: ArrayBuffer): Scene
   return {
     maps: new Map(manifest.maps.map(([name, map]) => [name, decode(map) as EnvironmentImage])),
     meshes: new Map(manifest.meshes.map(([name, mesh]) => [name, decode(mesh) as TriangleMesh])),
+    images: new Map((manifest.images ?? []).map(([name, image]) => [name, decode(image) as TextureImage])),
   };
 }

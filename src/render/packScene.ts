@@ -9,7 +9,9 @@
  * (src/lights/registry.ts). Light sampling picks an emitter in proportion
  * to its power through an alias table.
  */
-import { materialFeatures, packEmitterOnly, packMaterial } from '../materials/registry';
+import { materialFeatures, materialSeeThrough, materialTextures, textureSlotFeatures, packEmitterOnly, packMaterial, type MaterialTexture } from '../materials/registry';
+import { CHANNELS, type TextureInput } from '../scene/texture/texture';
+import { ATLAS_FORMATS, type AtlasFormat, type Placement } from './textures/atlas';
 import {
   type Light, lightArea, lightEmitted, lightExtent, lightFeatures, lightPower, lightSphere, packEmitter, packLightEmitter, packPlanarLight,
 } from '../lights/registry';
@@ -18,8 +20,7 @@ import { buildAliasTable } from './aliasTable';
 import type { MeshGroups } from './bvh/groups';
 import { selectCausticGuides, type GuideSphere } from './causticGuides';
 import {
-  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MESH, PLANAR_LIGHT, SECTIONS,
-  SPHERE,
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MAX_TEXTURES, MESH, PLANAR_LIGHT, SECTIONS, SPHERE, TEXTURE,
 } from './layout/scene';
 import { packRecord } from './layout/records';
 
@@ -38,6 +39,14 @@ export interface SceneFeatures {
   emissiveMeshes: boolean;
   /** Files named by several meshes, stored once and instanced (src/render/bvh/groups.ts). */
   instances: boolean;
+  /** The atlas formats the scene's textures use (textures/texture.glsl compiles a sampler for each). */
+  textureFormats: readonly AtlasFormat[];
+  /** Materials that let light through (opacity below 1 or an opacity texture): the pass-through code. */
+  seeThrough: boolean;
+  /** Normal maps (the tangent frame and Mitsuba's normalmap adapter). */
+  normalMaps: boolean;
+  /** The texture slots some material uses (registry's textureSlotDefine names): only those are compiled. */
+  textureSlots: readonly string[];
 }
 
 /** A scene with nothing optional: spheres of the default material under a constant sky. */
@@ -49,6 +58,10 @@ export const BASE_FEATURES: SceneFeatures = {
   meshes: false,
   emissiveMeshes: false,
   instances: false,
+  textureFormats: [],
+  seeThrough: false,
+  normalMaps: false,
+  textureSlots: [],
 };
 
 /** What packing needs to know of the scene's decoded files. */
@@ -59,6 +72,10 @@ export interface PackOptions {
   meshes?: readonly { area: number; triangles: number }[];
   /** How the meshes are stored (src/render/bvh/groups.ts), as the BVH was built: instances need their shader code. */
   groups?: MeshGroups;
+  /** Textured emissions: each emissive mesh's area-weighted mean of its texture's luminance (records.ts areaMean), by mesh index. */
+  emissionScale?: ReadonlyMap<number, number>;
+  /** Where a texture's image is in the atlas (src/render/textures/atlas.ts), for the inputs it feeds. */
+  placement?: (image: string, input: TextureInput) => Placement;
 }
 
 /** The emissive-triangle slots of an emissive mesh (see layout/scene.ts EMITTER). */
@@ -90,12 +107,14 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
   const block = new Float32Array(BLOCK_VEC4S * 4);
   const materials: Float32Array[] = [];
   const addMaterial = (record: Float32Array) => materials.push(record) - 1;
+  const textures = new TextureTable(data, options.placement);
+  const textureIndex = (t: MaterialTexture) => textures.index(t);
 
   const spheres = sceneSpheres(scene);
   const emitters = spheres.flatMap((s, index) => (power(s) > 0 ? [{ index, sphere: s }] : []));
   const bounds = { radius: sceneRadius(scene, spheres) };
   const environmentPower = mapEnvironmentPower(scene, bounds.radius, options.environmentIntegral);
-  const meshEmitters = emissiveMeshes(scene, options.meshes ?? []);
+  const meshEmitters = emissiveMeshes(scene, options.meshes ?? [], options.emissionScale);
   // The other lights' emitters come last, so scenes without them keep version 2's tables.
   const planarLights = scene.lights.filter((l) => lightArea(l) !== null);
   const otherLights = scene.lights.filter((l) => lightSphere(l) === null).flatMap((light) => {
@@ -113,8 +132,8 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
 
   spheres.forEach((sphere, i) => {
     const material = addMaterial(sphere.material === 'emitterOnly' ? packEmitterOnly(sphere.radiance) : packMaterial(sphere.material, false));
-    const record = packRecord(SPHERE, { center: sphere.center, radius: sphere.radius, material, emitterPdf: emitterPdf.get(i) ?? 0 });
-    data.set(record, (SECTIONS.spheres + i * SPHERE.texels) * 4);
+    data.set([...sphere.center, sphere.radius], (SECTIONS.sphereGeometry + i) * 4);
+    data.set(packRecord(SPHERE, { material, emitterPdf: emitterPdf.get(i) ?? 0 }), (SECTIONS.spheres + i * SPHERE.texels) * 4);
   });
   const setEmitter = (slot: number, record: Float32Array) => data.set(record, (SECTIONS.emitters + slot * EMITTER.texels) * 4);
   emitters.forEach(({ index, sphere }, i) => {
@@ -137,8 +156,8 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     const choice = packRecord(EMITTER_CHOICE, { aliasThreshold: alias.threshold[i], alias: alias.alias[i] });
     data.set(choice, (SECTIONS.emitterChoices + i * EMITTER_CHOICE.texels) * 4);
   });
-  const groundMaterial = scene.ground ? addMaterial(packMaterial(scene.ground.material, false)) : 0;
-  const meshMaterials = scene.meshes.map((mesh) => addMaterial(packMaterial(mesh.material, true)));
+  const groundMaterial = scene.ground ? addMaterial(packMaterial(scene.ground.material, false, textureIndex)) : 0;
+  const meshMaterials = scene.meshes.map((mesh) => addMaterial(packMaterial(mesh.material, true, textureIndex)));
   materials.forEach((record, i) => data.set(record, (SECTIONS.materials + i * MATERIAL.texels) * 4));
 
   const areaPdfs = new Map(meshEmitters.map((m, i) => [m.mesh, alias.pdf[firstMesh + i] / m.area]));
@@ -165,7 +184,8 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     block.set([...spheres[mirror].center, spheres[mirror].radius], base + GUIDE_FIELDS.MIRROR * 4);
     block.set([...spheres[light].center, spheres[light].radius], base + GUIDE_FIELDS.LIGHT * 4);
   });
-  const kinds = materialFeatures([...scene.spheres, ...scene.meshes, ...(scene.ground ? [scene.ground] : [])].map((o) => o.material));
+  const sceneMaterials = [...scene.spheres, ...scene.meshes, ...(scene.ground ? [scene.ground] : [])].map((o) => o.material);
+  const kinds = materialFeatures(sceneMaterials);
   const environmentMap = environment !== null && 'map' in environment;
   const features = {
     guides: guides.length,
@@ -175,6 +195,10 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     meshes: scene.meshes.length > 0,
     emissiveMeshes: meshEmitters.length > 0,
     instances: (options.groups?.shared.length ?? 0) > 0,
+    textureFormats: ATLAS_FORMATS.filter((f) => textures.formats.has(f)),
+    seeThrough: sceneMaterials.some(materialSeeThrough),
+    normalMaps: sceneMaterials.some((m) => materialTextures(m).some((t) => t.input === 'normal')),
+    textureSlots: textureSlotFeatures(sceneMaterials),
   };
   return { data, block, features, meshMaterials, meshEmitters: meshEmitters.map(({ mesh, first, count }) => ({ mesh, first, count })) };
 }
@@ -232,12 +256,13 @@ const luminance = (c: Vec3) => 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
  * Meshes whose material emits, with their power (pi * area * luminance: one
  * side emits) and their triangles' slots in the emissive-triangle texture.
  */
-function emissiveMeshes(scene: Scene, sizes: readonly { area: number; triangles: number }[]) {
+function emissiveMeshes(scene: Scene, sizes: readonly { area: number; triangles: number }[], emissionScale?: ReadonlyMap<number, number>) {
   let first = 0;
   return scene.meshes.flatMap((mesh, i) => {
     const radiance = emittedRadiance(mesh.material);
     const size = sizes[i];
-    const power = size ? Math.PI * size.area * luminance(radiance) : 0;
+    const textured = mesh.material.emission?.texture ? (emissionScale?.get(i) ?? 1) : 1;
+    const power = size ? Math.PI * size.area * luminance(radiance) * textured : 0;
     if (!(power > 0)) return [];
     const slots = { mesh: i, first, count: size.triangles, area: size.area, power, radiance };
     first += size.triangles;
@@ -246,3 +271,40 @@ function emissiveMeshes(scene: Scene, sizes: readonly { area: number; triangles:
 }
 
 const scale = (v: Vec3, s: number): Vec3 => [v[0] * s, v[1] * s, v[2] * s];
+
+/**
+ * The texture table (layout/scene.ts TEXTURE): one record per distinct
+ * texture and input, written as materials ask for their index.
+ */
+class TextureTable {
+  private readonly indices = new Map<string, number>();
+  readonly formats = new Set<AtlasFormat>();
+
+  constructor(
+    private readonly data: Float32Array,
+    private readonly placement?: (image: string, input: TextureInput) => Placement,
+  ) {}
+
+  index({ texture: t, input }: MaterialTexture): number {
+    const key = JSON.stringify([t, input]);
+    const known = this.indices.get(key);
+    if (known !== undefined) return known;
+    if (!this.placement) throw new Error(`packScene: ${t.image} is not placed (pass options.placement)`);
+    const i = this.indices.size;
+    if (i >= MAX_TEXTURES) throw new Error(`a scene reads at most ${MAX_TEXTURES} distinct textures`);
+    const p = this.placement(t.image, input);
+    this.formats.add(p.format);
+    const r = (t.uv.rotation * Math.PI) / 180;
+    const [sx, sy] = t.uv.scale;
+    const [ox, oy] = t.uv.offset;
+    const record = packRecord(TEXTURE, {
+      placement: [ATLAS_FORMATS.indexOf(p.format), p.layer, p.x, p.y],
+      size: [p.width, p.height, input === 'scalar' ? CHANNELS.indexOf(t.channel) : -1, t.cutoff ?? -1],
+      uRow: [Math.cos(r) * sx, Math.sin(r) * sy, ox, input === 'normal' ? (t.scale as number) : 0],
+      vRow: [-Math.sin(r) * sx, Math.cos(r) * sy, oy, 0],
+    });
+    this.data.set(record, (SECTIONS.textures + i * TEXTURE.texels) * 4);
+    this.indices.set(key, i);
+    return i;
+  }
+}

@@ -12,7 +12,8 @@ import { sceneLayoutDefines, sceneLayoutGlsl } from './layout/scene';
 import type { SceneFeatures } from './packScene';
 import { samplingDefines, type SamplerKind } from './sampling';
 import { bvhDefines } from './bvhTextures';
-import { bsdfDispatchGlsl, MATERIAL_CHUNK_GUARDS, MATERIAL_CHUNK_NAMES, materialDefines, materialFeatureDefines, materialGlsl } from '../materials/registry';
+import { ATLAS_FORMATS } from './textures/atlas';
+import { bsdfDispatchGlsl, surfaceInputsGlsl, textureSlotDefines, MATERIAL_CHUNK_GUARDS, MATERIAL_CHUNK_NAMES, materialDefines, materialFeatureDefines, materialGlsl } from '../materials/registry';
 import { emitterGlsl, LIGHT_CHUNK_GUARDS, LIGHT_CHUNK_NAMES, lightDispatchGlsl, lightFeatureDefines } from '../lights/registry';
 
 /** The chunks every kernel that touches the scene needs. */
@@ -28,6 +29,8 @@ export const SCENE_CHUNK_NAMES = [
   'scene/bvh.glsl',
   'scene/instances.glsl',
   'scene/intersect.glsl',
+  'textures/texture.glsl',
+  'generated/surface_inputs.glsl',
   'surface.glsl',
   'bsdf/ggx.glsl',
   'bsdf/fresnel.glsl',
@@ -51,6 +54,7 @@ const GENERATED: Record<string, () => string> = {
   'generated/bsdf_dispatch.glsl': bsdfDispatchGlsl,
   'generated/emitters.glsl': emitterGlsl,
   'generated/light_dispatch.glsl': lightDispatchGlsl,
+  'generated/surface_inputs.glsl': () => `#if HAS_SURFACE_INPUTS\n${surfaceInputsGlsl()}\n#endif`,
 };
 
 /**
@@ -80,12 +84,22 @@ export function sceneDefines(sampler: SamplerKind = 'kronecker', russianRoulette
   };
 }
 
+/** Whether the program reads the materials' surface inputs (textures, opacity). */
+const surfaceInputs = (f: SceneFeatures) => f.textureFormats.length > 0 || f.seeThrough;
+
 /** The feature switches of one program variant. */
 export function featureDefines(features: SceneFeatures): Record<string, number> {
   return {
     CAUSTIC_GUIDES: features.guides,
-    ...materialFeatureDefines(features.materials),
+    ...materialFeatureDefines(features.materials, surfaceInputs(features)),
     ...lightFeatureDefines(features.lights),
+    HAS_SURFACE_INPUTS: surfaceInputs(features) ? 1 : 0,
+    HAS_TEXTURES: features.textureFormats.length > 0 ? 1 : 0,
+    ...Object.fromEntries(ATLAS_FORMATS.map((f) => [`HAS_TEXTURES_${f.toUpperCase()}`, features.textureFormats.includes(f) ? 1 : 0])),
+    HAS_SEE_THROUGH: features.seeThrough ? 1 : 0,
+    HAS_NORMAL_MAPS: features.normalMaps ? 1 : 0,
+    ...textureSlotDefines(features.textureSlots),
+    HAS_TEXTURED_EMISSION: features.textureSlots.some((s) => s.endsWith('_EMISSION')) && features.emissiveMeshes ? 1 : 0,
     HAS_ENV_MAP: features.environmentMap ? 1 : 0,
     HAS_MESHES: features.meshes ? 1 : 0,
     HAS_EMISSIVE_MESHES: features.emissiveMeshes ? 1 : 0,

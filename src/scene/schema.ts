@@ -9,7 +9,7 @@
  */
 import * as z from 'zod';
 import {
-  allowedOnGround, defaultMaterial, MATERIAL_KEYS, materialSchema, normalizeMaterial, SOLID_DESCRIPTIONS, UNKNOWN_TYPE_MESSAGE,
+  allowedOnGround, defaultMaterial, materialTextures, MATERIAL_KEYS, materialSchema, normalizeMaterial, SOLID_DESCRIPTIONS, UNKNOWN_TYPE_MESSAGE,
 } from '../materials/registry';
 import { LIGHT_KEYS, lightSchema, normalizeLight, UNKNOWN_LIGHT_TYPE_MESSAGE } from '../lights/registry';
 import { MAX_BOUNCES, MAX_IMAGE_SIZE, MAX_LIGHTS, MAX_MESHES, MAX_SCENE_BYTES, MAX_SPHERES } from './limits';
@@ -121,7 +121,11 @@ const groundMaterial = material.refine(allowedOnGround, {
 const groundShape = { height: coordinate().default(0), material: groundMaterial };
 /** A light by its `type` (absent = the sphere light of version 1), through the light kinds' registry. */
 const light = oneOf<Light>((value) => (lightSchema(value.type) as z.ZodType<Light> | undefined) ?? UNKNOWN_LIGHT_TYPE_MESSAGE);
-const sphereShape = { center: point(), radius: length(), material };
+/** Spheres have no texture coordinates (the format's rule), so no textures. */
+const sphereMaterial = material.superRefine((m, ctx) => {
+  for (const t of materialTextures(m)) ctx.addIssue({ code: 'custom', path: t.path, message: 'cannot be a texture on a sphere (spheres have no texture coordinates)' });
+});
+const sphereShape = { center: point(), radius: length(), material: sphereMaterial };
 const positiveScale = () => z.number().gt(0).max(MAX_COORDINATE);
 const meshShape = {
   file: z.string().min(1, 'must name a file').max(4096),

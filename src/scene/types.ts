@@ -7,14 +7,18 @@ export type Vec3 = [number, number, number];
 
 /** Radiance `color * intensity` emitted from the outside of a surface (version 2). */
 export interface Emission {
+  /** The color, or a texture's scale (as a color) when `texture` is set. */
   color: Vec3;
   intensity: number;
+  /** Version 3 (principled): the color is this texture (times `color`, its scale). */
+  texture?: Texture;
 }
 
 /** A material of any kind (src/materials/: one folder per kind, listed by the registry). */
 export type { Material, MaterialType } from '../materials/registry';
 import type { Material } from '../materials/registry';
 import type { EnvironmentDistribution } from './envmap/distribution';
+import type { Texture } from './texture/texture';
 
 export interface Camera {
   position: Vec3;
@@ -137,4 +141,16 @@ export interface TriangleMesh {
   uvs?: Float32Array | null;
   /** glTF `TEXCOORD_1`, 2 floats per vertex, when every primitive has it; null otherwise (and for other formats); absent means null. */
   uvs1?: Float32Array | null;
+  /**
+   * The file's tangent frame for normal maps, glTF `TANGENT`: 4 floats (x,
+   * y, z, w) per vertex, in object space like `normals` (unit xyz, w = +-1),
+   * meaning bitangent = cross(normal, xyz) * w, which points up the image
+   * (toward decreasing v). A vertex with (0, 0, 0, 0) has none (its
+   * primitive gave no TANGENT). Null when no primitive gives one, when the
+   * mesh is flat (glTF ignores TANGENT without NORMAL) and for other
+   * formats; absent means null. Only read, never computed, on load: the
+   * renderer asks meshTangents (./mesh/tangents.ts) for the frame of the
+   * meshes that need one, which computes MikkTSpace where this has none.
+   */
+  tangents?: Float32Array | null;
 }

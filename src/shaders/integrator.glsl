@@ -17,6 +17,48 @@
 // path rate). On a GPU whose warps retire early it can pay off.
 uniform int uMaxBounces;
 
+#if HAS_SEE_THROUGH
+// Most see-through surfaces a ray or a shadow ray passes before it counts
+// as blocked (a bound for the loops; beyond it the estimate loses energy).
+const int SEE_THROUGH_STEPS = 16;
+
+// A hit on a see-through material (opacity o < 1) lets the ray pass with
+// probability 1 - o: the next hit along the same ray replaces it. Not a
+// bounce (Mitsuba's volpath), so a cut-out costs no path depth; emission
+// is then seen with probability o, which is the format's o * Le.
+void passThrough(vec3 direction, uint depth, inout Hit hit, inout Material material) {
+  for (int i = 0; i < SEE_THROUGH_STEPS; i++) {
+    if (hit.kind == HIT_NONE) return;
+    float o = materialOpacity(material, hit.uv);
+    if (o >= 1.0 || randEvent(depth * uint(SEE_THROUGH_STEPS) + uint(i)) < o) return;
+    hit = intersectScene(spawnRayOrigin(hit, direction), direction);
+    material = loadMaterial(hit.material);
+  }
+}
+
+// The fraction of light a shadow ray carries through see-through surfaces
+// before tMax: the product of their 1 - opacity (0: blocked).
+float shadowTransmittance(vec3 origin, vec3 direction, float tMax, int skipSphere) {
+  float transmitted = 1.0;
+  for (int i = 0; i < SEE_THROUGH_STEPS; i++) {
+    if (!occluded(origin, direction, tMax, skipSphere)) return transmitted;
+    Hit h = intersectScene(origin, direction);
+    // A blocker at or past tMax is the light itself (the any-hit test's rounding).
+    if (h.kind == HIT_NONE || h.t >= tMax * 0.9999) return transmitted;
+    transmitted *= 1.0 - materialOpacity(loadMaterial(h.material), h.uv);
+    if (transmitted <= 0.0) return 0.0;
+    tMax -= h.t;
+    origin = spawnRayOrigin(h, direction);
+  }
+  return 0.0;
+}
+#else
+void passThrough(vec3 direction, uint depth, inout Hit hit, inout Material material) {}
+float shadowTransmittance(vec3 origin, vec3 direction, float tMax, int skipSphere) {
+  return occluded(origin, direction, tMax, skipSphere) ? 0.0 : 1.0;
+}
+#endif
+
 bool scatters(Hit hit, Material material) { return hit.kind != HIT_NONE && bsdfScatters(material); }
 
 // Radiance leaving the hit towards the ray's origin: the sky for an escaped
@@ -25,25 +67,25 @@ bool scatters(Hit hit, Material material) { return hit.kind != HIT_NONE && bsdfS
 // Dirac delta).
 vec3 emitted(Hit hit, Material material, vec3 direction, vec3 previousPosition, bool previousDelta, float previousPdf) {
   float weight = previousDelta ? 1.0 : powerHeuristic(previousPdf, lightPdf(previousPosition, direction, hit));
-  vec3 surface = dot(direction, hit.normal) < 0.0 ? materialEmission(material) : vec3(0.0);
+  vec3 surface = dot(direction, hit.normal) < 0.0 ? surfaceEmission(material, hit.uv) : vec3(0.0);
   return (hit.kind == HIT_NONE ? escapedRadiance(direction) : surface) * weight;
 }
 
 // Next-event estimation at a surface vertex: f * Le * |cos| / pdf of one
 // light sample, weighted by the power heuristic against BSDF sampling.
 // u: .xy the point on the emitter, .z the choice of emitter.
-vec3 sampleDirectLight(Hit hit, mat3 frame, vec3 wo, Bsdf bsdf, vec3 u) {
+vec3 sampleDirectLight(Hit hit, mat3 frame, vec3 wo, Bsdf bsdf, ShadingNormal shading, vec3 u) {
   LightSample light = sampleLight(hit.position, u);
   vec3 wi = light.direction * frame;  // transpose(frame) * direction: into the shading frame
   float bsdfPdf;
-  vec3 f = bsdfEval(bsdf, wo, wi, bsdfPdf);
+  vec3 f = bsdfEval(bsdf, wo, wi, bsdfPdf) * normalMapFactor(shading, light.direction);
   if (light.pdf <= 0.0 || bsdfPdf <= 0.0) return vec3(0.0);
   bsdfPdf = guidedPdf(bsdfPdf, light.direction);  // BSDF sampling is mixed with the caustic guides
   vec3 origin = spawnRayOrigin(hit, light.direction);
-  if (occluded(origin, light.direction, light.distance, light.skipSphere)) return vec3(0.0);
+  float transmitted = shadowTransmittance(origin, light.direction, light.distance, light.skipSphere);
   // A Dirac delta light is found by this technique alone: no MIS.
   float weight = light.delta ? 1.0 : powerHeuristic(light.pdf, bsdfPdf);
-  return f * light.radiance * (weight / light.pdf);
+  return f * light.radiance * (transmitted * weight / light.pdf);
 }
 
 // The rest of a path whose camera ray hit `hit` (see scatters), given the
@@ -58,7 +100,8 @@ vec3 traceRadiance(vec3 direction, Hit hit, Material material, vec3 radiance) {
     // The material evaluated at the surface point, in its shading frame.
     Surface surface = surfaceAt(hit);
     Bsdf bsdf = evalMaterial(material, surface);
-    vec3 normal = facingNormal(surface, bsdf, direction);
+    ShadingNormal shading = shadingNormal(material, surface, facingNormal(surface, bsdf, direction), -direction);
+    vec3 normal = shading.normal;
     mat3 frame = basisAround(normal);
     vec3 wo = -direction * frame;
 
@@ -75,13 +118,13 @@ vec3 traceRadiance(vec3 direction, Hit hit, Material material, vec3 radiance) {
     buildGuides(hit.position, normal, bsdf);
 
     // Light arriving directly from an emitter (next-event estimation).
-    vec3 direct = sampleDirectLight(hit, frame, wo, bsdf, uLight.xyz);
+    vec3 direct = sampleDirectLight(hit, frame, wo, bsdf, shading, uLight.xyz);
     radiance += throughput * (bsdfHasNonDeltaLobe(bsdf) ? direct : vec3(0.0));
 
     // Sample the BSDF (mixed with the caustic guides) for the next direction.
     BsdfSample bs = sampleGuided(bsdf, frame, wo, uBsdf, uLight.w);
     if (!bs.valid) break;
-    throughput *= bs.weight;
+    throughput *= bs.weight * normalMapFactor(shading, frame * bs.wi);
 
 #if RUSSIAN_ROULETTE
     // Possibly terminate the path (unbiased: survivors are reweighted by
@@ -100,6 +143,7 @@ vec3 traceRadiance(vec3 direction, Hit hit, Material material, vec3 radiance) {
     direction = frame * bs.wi;
     hit = intersectScene(spawnRayOrigin(hit, direction), direction);
     material = loadMaterial(hit.material);
+    passThrough(direction, uint(depth + 1), hit, material);
     radiance += throughput * emitted(hit, material, direction, position, bs.isDelta, bs.pdf);
     // Decided here, not at the top: a lane that leaves at the back edge
     // spares the quad a whole masked pass through the body.

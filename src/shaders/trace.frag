@@ -50,6 +50,7 @@ void main() {
       generateCameraRay(vec2(pixel), origin, direction);
       hit = intersectScene(origin, direction);
       material = loadMaterial(hit.material);
+      passThrough(direction, 0u, hit, material);
       radiance = emitted(hit, material, direction, origin, true, 0.0);
       scattering = uMaxBounces > 0 && scatters(hit, material);
       if (!scattering) accumulate(sum, radiance);

@@ -66,7 +66,7 @@ describe('white furnace', () => {
 /** Per-pixel expectation (rows top to bottom) of the furnace scene with one white sphere. */
 function expectedFurnaceImage(scene: Scene, width: number, height: number): number[] {
   const sphere = scene.spheres[0];
-  const roughness = sphere.material.roughness;
+  const roughness = sphere.material.roughness as number;
   const alpha = roughness * roughness;
   const table = Array.from({ length: 65 }, (_, i) => (alpha < 1e-3 ? 1 : ggxAlbedo(Math.max(1e-4, i / 64), alpha)));
   const albedo = (mu: number) => {

@@ -28,6 +28,7 @@ describe('packAssets / unpackAssets', () => {
     expect(back).toEqual({
       maps: assets.maps,
       meshes: new Map([...assets.meshes].map(([name, mesh]) => [name, name === 'b.ply' ? { ...mesh, extra: { ids: new Uint8Array([1, 2, 3]), count: 3 } } : mesh])),
+      images: new Map(),
     });
     const a = back.meshes.get('a.obj')!;
     expect(a.positions).toBeInstanceOf(Float32Array);

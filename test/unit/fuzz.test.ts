@@ -4,6 +4,7 @@
  * else. Accepted scenes are checked against an independent statement of the
  * rules and must round-trip through serializeScene.
  */
+import { isTexture } from '../../src/scene/texture/texture';
 import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import fc from 'fast-check';
@@ -76,16 +77,19 @@ function checkScene(scene: Scene): void {
       check(vec(m.eta, (x) => x >= 0) && vec(m.k, (x) => x >= 0), `${what}.eta and k >= 0`);
     } else if (m.type === 'principled') {
       const scalars = ['metallic', 'roughness', 'specTint', 'specTrans', 'sheen', 'sheenTint', 'clearcoat', 'clearcoatGloss'] as const;
-      keys(m, ['type', 'baseColor', ...scalars, 'ior', ...emission], what);
-      check(vec(m.baseColor, (x) => x >= 0 && x <= 1), `${what}.baseColor in [0, 1]`);
-      for (const key of scalars) check(m[key] >= 0 && m[key] <= 1, `${what}.${key} in [0, 1]`);
+      keys(m, ['type', 'baseColor', ...scalars, 'ior', 'opacity', ...('normalMap' in m ? ['normalMap'] : []), ...emission], what);
+      check(isTexture(m.baseColor) || vec(m.baseColor, (x) => x >= 0 && x <= 1), `${what}.baseColor in [0, 1]`);
+      for (const key of [...scalars, 'opacity'] as const) {
+        const v = m[key];
+        check(isTexture(v) ? v.image.length > 0 : v >= 0 && v <= 1, `${what}.${key} in [0, 1] or a texture`);
+      }
       check(m.ior >= 1.01 && m.ior <= 4, `${what}.ior in [1.01, 4]`);
     } else {
       keys(m, ['type', 'color', 'roughness', ...emission], what);
       check(m.type === 'standard', `${what}.type is standard or dielectric`);
     }
     if (m.type !== 'principled') check(vec(m.color, (x) => x >= 0 && x <= 1), `${what}.color in [0, 1]`);
-    check(m.roughness >= 0 && m.roughness <= 1, `${what}.roughness in [0, 1]`);
+    check(isTexture(m.roughness) || (m.roughness >= 0 && m.roughness <= 1), `${what}.roughness in [0, 1]`);
     if (m.emission) check(vec(m.emission.color, (x) => x >= 0) && m.emission.intensity >= 0, `${what}.emission >= 0`);
   };
 

@@ -3,7 +3,7 @@ import { buildAliasTable } from '../../src/render/aliasTable';
 import { selectCausticGuides } from '../../src/render/causticGuides';
 import { defineRecord, packRecord, recordGlsl } from '../../src/render/layout/records';
 import {
-  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, HEADER, MATERIAL, MAX_GUIDES, MESH, SECTIONS, SPHERE,
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, HEADER, MATERIAL, MAX_GUIDES, MAX_SCENE_SPHERES, MESH, SECTIONS, SPHERE,
 } from '../../src/render/layout/scene';
 import { BASE_FEATURES } from '../../src/render/packScene';
 import { materialGlsl, unpackMaterial } from '../../src/materials/registry';
@@ -15,6 +15,9 @@ import { MAX_SPHERES } from '../../src/scene/limits';
 const camera = { position: [0, 1, 5], target: [0, 0, 0] };
 
 /** Reads record `index` of a table back into named fields, through the layout's own field table. */
+/** A sphere's center.xyz and radius from the sphere-geometry table. */
+const sphereGeometry = (data: Float32Array, i: number) => Array.from(data.subarray((SECTIONS.sphereGeometry + i) * 4, (SECTIONS.sphereGeometry + i) * 4 + 4));
+
 function readRecord(data: Float32Array, first: number, layout: typeof SPHERE, index: number): Record<string, number | number[]> {
   const base = (first + index * layout.texels) * 4;
   const out: Record<string, number | number[]> = {};
@@ -76,7 +79,7 @@ describe('packScene', () => {
     expect(packed.data.length).toBe(DATA_TEXELS * 4);
     expect(packed.block.length).toBe(BLOCK_VEC4S * 4);
     const spheres = [0, 1, 2].map((i) => readRecord(packed.data, SECTIONS.spheres, SPHERE, i));
-    expect(spheres.map((s) => [s.center, s.radius])).toEqual([[[0, 0, 0], 1], [[3, 0, 0], 2], [[1, 2, 3], 0.5]]);
+    expect([0, 1, 2].map((i) => { const g = sphereGeometry(packed.data, i); return [g.slice(0, 3), g[3]]; })).toEqual([[[0, 0, 0], 1], [[3, 0, 0], 2], [[1, 2, 3], 0.5]]);
     const materials = spheres.map((s) => readMaterial(packed.data, s.material as number));
     expect(materials[0]).toMatchObject({ type: 'standard', twoSided: false, color: [0.25, 0.5, 0.75], roughness: 0.5, emission: [3, 3, 3] });
     expect(materials[1].type).toBe('dielectric');
@@ -269,15 +272,18 @@ describe('the data texture in rows', () => {
     const sphereTexel = SECTIONS.spheres + last * SPHERE.texels;
     expect(sphereTexel).toBeGreaterThanOrEqual(SCENE_ROW_TEXELS);
     const sphere = readRecord(packed.data, SECTIONS.spheres, SPHERE, last);
-    expect(sphere.center).toEqual([last, -last, 2 * last]);
-    expect(sphere.radius).toBeCloseTo(1 + last / 1000, 6);
+    const geometry = sphereGeometry(packed.data, last);
+    expect(geometry.slice(0, 3)).toEqual([last, -last, 2 * last]);
+    expect(geometry[3]).toBeCloseTo(1 + last / 1000, 6);
+    // The geometry table lies in row 0 (the shader fetches it with row 0).
+    expect(SECTIONS.sphereGeometry + MAX_SCENE_SPHERES).toBeLessThanOrEqual(SCENE_ROW_TEXELS);
     const materialTexel = SECTIONS.materials + (sphere.material as number) * MATERIAL.texels;
     expect(materialTexel).toBeGreaterThanOrEqual(SCENE_ROW_TEXELS);
     const material = readMaterial(packed.data, sphere.material as number);
     (material.color as number[]).forEach((c, k) => expect(c).toBeCloseTo(color(last)[k], 6));
     // The shader's address of a texel, (texel & 2047, texel >> 11), names the same float.
     const at = (texel: number) => ((texel >> 11) * SCENE_ROW_TEXELS + (texel & (SCENE_ROW_TEXELS - 1))) * 4;
-    expect(packed.data[at(sphereTexel)]).toBe(last);
+    expect(packed.data[at(sphereTexel)]).toBe(sphere.material);
     // Past the tables the rectangle is padding, zero.
     expect(packed.data.subarray(TABLE_TEXELS * 4).every((v) => v === 0)).toBe(true);
   });

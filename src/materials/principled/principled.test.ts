@@ -39,6 +39,7 @@ describe('principled: schema, serialization, export, record', () => {
       sheenTint: 0,
       clearcoat: 0,
       clearcoatGloss: 0,
+      opacity: 1,
     });
   });
 
@@ -54,9 +55,13 @@ describe('principled: schema, serialization, export, record', () => {
     [{ type: 'principled', ior: 1 }, 'spheres[0].material.ior', 'must be >= 1.01'],
     [{ type: 'principled', ior: 4.5 }, 'spheres[0].material.ior', 'must be <= 4'],
     [{ type: 'principled', baseColor: [0.5, 2, 0.5] }, 'spheres[0].material.baseColor[1]', 'must be <= 1'],
-    [{ type: 'principled', opacity: 0.5 }, 'spheres[0].material.opacity', 'unknown key'],
-    [{ type: 'principled', normalMap: { image: 'n.png' } }, 'spheres[0].material.normalMap', 'unknown key'],
-    [{ type: 'principled', roughness: { image: 'r.png' } }, 'spheres[0].material.roughness', ''],
+    [{ type: 'principled', opacity: 1.5 }, 'spheres[0].material.opacity', '<= 1'],
+    [{ type: 'principled', roughness: { image: 'r.png', channel: 'x' } }, 'spheres[0].material.roughness.channel', 'must be "r" or "g" or "b" or "a"'],
+    [{ type: 'principled', baseColor: { image: 'c.png', channel: 'g' } }, 'spheres[0].material.baseColor.channel', 'unknown key'],
+    [{ type: 'principled', metallic: { image: 'm.png', cutoff: 2 } }, 'spheres[0].material.metallic.cutoff', '<= 1'],
+    [{ type: 'principled', roughness: { image: '' } }, 'spheres[0].material.roughness.image', 'must name a file'],
+    [{ type: 'principled', normalMap: 0.5 }, 'spheres[0].material.normalMap', ''],
+    [{ type: 'principled', ior: { image: 'i.png' } }, 'spheres[0].material.ior', ''],
     [{ type: 'principled', color: [1, 1, 1] }, 'spheres[0].material.color', 'unknown key for this type'],
   ])('rejects %j at its key', (material, path, message) => {
     const result = safeParseScene(sceneWith(material));
@@ -92,11 +97,13 @@ describe('principled: schema, serialization, export, record', () => {
     expect(xml.match(/<bsdf type="principled">/g)).toHaveLength(3);
   });
 
-  it('packs baseColor and the nine scalars into texels 1 to 3 (the record stays 4 texels)', () => {
-    expect(MATERIAL_TEXELS).toBe(4);
+  it('packs baseColor and the nine scalars into texels 1 to 3, the opacity and texture indices after them', () => {
+    expect(MATERIAL_TEXELS).toBe(7);
     const m = principled({ baseColor: [0.1, 0.2, 0.3], metallic: 0.4, roughness: 0.5, ior: 1.6, specTint: 0.7, specTrans: 0.8, sheen: 0.9, sheenTint: 0.25, clearcoat: 0.75, clearcoatGloss: 0.125 });
     const record = packMaterial(m, true);
-    expect(Array.from(record.subarray(4))).toEqual([0.1, 0.2, 0.3, 0.4, 0.5, 1.6, 0.7, 0.8, 0.9, 0.25, 0.75, 0.125].map(Math.fround));
+    expect(Array.from(record.subarray(4, 16))).toEqual([0.1, 0.2, 0.3, 0.4, 0.5, 1.6, 0.7, 0.8, 0.9, 0.25, 0.75, 0.125].map(Math.fround));
+    // Opacity 1, then no texture in any of the eight slots (the emission's last).
+    expect(Array.from(record.subarray(16, 25))).toEqual([1, -1, -1, -1, -1, -1, -1, -1, -1]);
     const back = unpackMaterial(record);
     expect(back.type).toBe('principled');
     // A transmitting principled material is a solid's boundary: never two-sided.
@@ -120,7 +127,8 @@ const FURNACE: FurnaceCase[] = JSON.parse(readFileSync(new URL('../../../test/fi
  */
 function channels(m: PrincipledMaterial): [number, Material][] {
   if (m.specTint > 0 || (m.sheen > 0 && m.sheenTint > 0)) return [[0, m]];
-  return [0, 1, 2].map((c) => [c, { ...m, baseColor: [m.baseColor[c], m.baseColor[c], m.baseColor[c]] }]);
+  const base = m.baseColor as Vec3;
+  return [0, 1, 2].map((c) => [c, { ...m, baseColor: [base[c], base[c], base[c]] }]);
 }
 
 const direction = (theta: number): Vec3 => [Math.sin((theta * Math.PI) / 180), 0, Math.cos((theta * Math.PI) / 180)];

@@ -24,6 +24,10 @@ export const TEXTURE_UNITS = {
   /** The AOV pass's running sums (aov.frag uAlbedoSums, uNormalSums). */
   albedoSums: 9,
   normalSums: 10,
+  /** The texture atlases, one array per storage format (textures/texture.glsl). */
+  texturesSrgb8: 11,
+  texturesLinear8: 12,
+  texturesFloat: 13,
 } as const;
 
 /** The environment map's units in the form EnvironmentTextures takes. */

@@ -22,13 +22,14 @@ export { EMITTER_KINDS, PLANAR_LIGHT };
 export const MATERIAL = { texels: MATERIAL_TEXELS } as const;
 
 /**
- * A sphere (also each `lights` entry, with an emitter-only material).
- * `emitterPdf` is the probability that light sampling picks this sphere
- * (0 when it does not emit), for the MIS weight of a hit on it.
+ * A sphere (also each `lights` entry, with an emitter-only material): its
+ * material and `emitterPdf`, the probability that light sampling picks this
+ * sphere (0 when it does not emit), for the MIS weight of a hit on it. Its
+ * geometry (center.xyz, radius) is a texel of its own in the
+ * sphere-geometry table (SECTIONS.sphereGeometry), which the intersection
+ * loops read for every sphere on every ray.
  */
 export const SPHERE = defineRecord('SphereRecord', [
-  ['center', 'vec3'],
-  ['radius', 'float'],
   ['material', 'int'],
   ['emitterPdf', 'float'],
 ]);
@@ -102,23 +103,46 @@ export const MAX_GUIDES = 2;
 export const GUIDE_FIELDS = { MIRROR: 0, LIGHT: 1 } as const;
 export const GUIDE_VEC4S = Object.keys(GUIDE_FIELDS).length;
 
+/**
+ * A texture a material reads (textures/texture.glsl), one per distinct
+ * texture and input: where its image is (format 0 srgb8, 1 linear8, 2
+ * float; the page of that format's atlas array; the corner there), its size
+ * as stored, the channel a scalar reads (-1: RGB) and its cutoff (-1:
+ * none), and the `uv` transform's rows (u' = dot(uRow.xyz, (u, v, 1)),
+ * likewise v'), a normal map's scale in uRow.w.
+ */
+export const TEXTURE = defineRecord('TextureRecord', [
+  ['placement', 'vec4'],
+  ['size', 'vec4'],
+  ['uRow', 'vec4'],
+  ['vRow', 'vec4'],
+]);
+/** Distinct textures a scene may read. */
+export const MAX_TEXTURES = 512;
+
 /** Lights become spheres; each sphere, light, mesh and the ground has its own material. */
 export const MAX_SCENE_SPHERES = MAX_SPHERES + MAX_LIGHTS;
 export const MAX_MATERIALS = MAX_SCENE_SPHERES + MAX_MESHES + 1;
 export const MAX_EMITTERS = MAX_SCENE_SPHERES + 1 + MAX_MESHES;
 
+/** The tables of the data texture, in order, with their texels. */
+const TABLES = [
+  // First and within row 0: the intersection loops fetch it with a constant
+  // row (a dynamic row cost the seed scene 7% of its path rate in SwiftShader).
+  ['sphereGeometry', MAX_SCENE_SPHERES],
+  ['materials', MAX_MATERIALS * MATERIAL.texels],
+  ['spheres', MAX_SCENE_SPHERES * SPHERE.texels],
+  ['emitters', MAX_EMITTERS * EMITTER.texels],
+  ['emitterChoices', MAX_EMITTERS * EMITTER_CHOICE.texels],
+  ['meshes', MAX_MESHES * MESH.texels],
+  ['textures', MAX_TEXTURES * TEXTURE.texels],
+  ['planarLights', MAX_LIGHTS * PLANAR_LIGHT.texels],
+] as const;
+type Table = (typeof TABLES)[number][0];
 /** First texel of each table in the data texture. */
-export const SECTIONS = {
-  materials: 0,
-  spheres: MAX_MATERIALS * MATERIAL.texels,
-  emitters: MAX_MATERIALS * MATERIAL.texels + MAX_SCENE_SPHERES * SPHERE.texels,
-  emitterChoices: MAX_MATERIALS * MATERIAL.texels + MAX_SCENE_SPHERES * SPHERE.texels + MAX_EMITTERS * EMITTER.texels,
-  meshes:
-    MAX_MATERIALS * MATERIAL.texels + MAX_SCENE_SPHERES * SPHERE.texels + MAX_EMITTERS * EMITTER.texels + MAX_EMITTERS * EMITTER_CHOICE.texels,
-  planarLights:
-    MAX_MATERIALS * MATERIAL.texels + MAX_SCENE_SPHERES * SPHERE.texels + MAX_EMITTERS * EMITTER.texels + MAX_EMITTERS * EMITTER_CHOICE.texels +
-    MAX_MESHES * MESH.texels,
-} as const;
+export const SECTIONS = Object.fromEntries(
+  TABLES.map(([name], i) => [name, TABLES.slice(0, i).reduce((sum, [, texels]) => sum + texels, 0)]),
+) as Readonly<Record<Table, number>>;
 /**
  * Width of a row of the data texture: the tables run on from one row into the
  * next (a record may straddle two rows; each texel is addressed on its own).
@@ -130,7 +154,8 @@ export const SCENE_ROW_TEXELS = 2048;
 const SCENE_ROW_BITS = Math.log2(SCENE_ROW_TEXELS);
 if (!Number.isInteger(SCENE_ROW_BITS)) throw new Error('SCENE_ROW_TEXELS must be a power of two');
 /** Texels the tables fill, from texel 0. */
-export const TABLE_TEXELS = SECTIONS.planarLights + MAX_LIGHTS * PLANAR_LIGHT.texels;
+export const TABLE_TEXELS = TABLES.reduce((sum, [, texels]) => sum + texels, 0);
+if (MAX_SCENE_SPHERES > SCENE_ROW_TEXELS) throw new Error('the sphere-geometry table must fit in row 0');
 /** Height of the data texture: the rows the tables need. */
 export const DATA_ROWS = Math.ceil(TABLE_TEXELS / SCENE_ROW_TEXELS);
 /** Texels of the data texture, DATA_ROWS whole rows (past TABLE_TEXELS: padding, 0). */
@@ -145,13 +170,16 @@ export function sceneLayoutDefines(): Record<string, number> {
     ...recordDefines(PLANAR_LIGHT),
     ...recordDefines(EMITTER_CHOICE),
     ...recordDefines(MESH),
+    ...recordDefines(TEXTURE),
     ...recordDefines(INSTANCE),
+    SPHERE_GEOMETRY_FIRST: SECTIONS.sphereGeometry,
     MATERIALS_FIRST: SECTIONS.materials,
     SPHERES_FIRST: SECTIONS.spheres,
     EMITTERS_FIRST: SECTIONS.emitters,
     EMITTER_CHOICES_FIRST: SECTIONS.emitterChoices,
     MESHES_FIRST: SECTIONS.meshes,
     PLANAR_LIGHTS_FIRST: SECTIONS.planarLights,
+    TEXTURES_FIRST: SECTIONS.textures,
     SCENE_ROW_TEXELS,
     SCENE_ROW_BITS,
     MAX_SCENE_SPHERES,
@@ -166,7 +194,7 @@ export function sceneLayoutDefines(): Record<string, number> {
 
 /** The generated GLSL: a struct and a loader per record (see records.ts). */
 export function sceneLayoutGlsl(): string {
-  const tables: RecordLayout[] = [SPHERE, EMITTER_CHOICE, MESH];
+  const tables: RecordLayout[] = [SPHERE, EMITTER_CHOICE, MESH, TEXTURE];
   return [
     '// Generated from src/render/layout/scene.ts: do not edit.',
     ...tables.map((layout) => recordGlsl(layout, 'sceneData')),

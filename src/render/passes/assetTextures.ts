@@ -21,6 +21,9 @@ import { INSTANCE } from '../layout/scene';
 import { BvhTextures } from '../bvhTextures';
 import type { MeshEmitterSlots } from '../packScene';
 import { EnvironmentTextures } from '../environmentTextures';
+import { TextureAtlas } from '../textures/textureAtlas';
+import { materialTextures } from '../../materials/registry';
+import type { TextureImage } from '../../scene/texture/image';
 import type { Program } from '../gl/program';
 import { createDataTexture, uploadDataTexture } from '../gl/dataTexture';
 import { ENVIRONMENT_UNITS, TEXTURE_UNITS } from '../gl/textureUnits';
@@ -48,7 +51,17 @@ export class AssetTextures {
     instances: InstanceTable | null;
   } | null = null;
 
-  constructor(private readonly gl: WebGL2RenderingContext) {}
+  readonly textures: TextureAtlas;
+
+  constructor(private readonly gl: WebGL2RenderingContext) {
+    this.textures = new TextureAtlas(gl);
+  }
+
+  /** Uploads the images the scene's materials read (unless the atlas holds exactly these). */
+  setTextures(scene: Scene, images: ReadonlyMap<string, TextureImage>): void {
+    const materials = [...(scene.ground ? [scene.ground.material] : []), ...scene.meshes.map((m) => m.material)];
+    this.textures.set(materials.flatMap((m) => materialTextures(m).map((t) => ({ image: t.texture.image, input: t.input }))), images);
+  }
 
   /** Uploads `image` (and its distribution) unless it is the one already uploaded; null frees it. */
   setEnvironmentMap(image: EnvironmentImage | null): void {
@@ -64,9 +77,12 @@ export class AssetTextures {
    * instance table, and the emissive-triangle table of `emitters` unless
    * their slots are unchanged.
    */
-  setMeshes(world: WorldMeshes, emitters: readonly MeshEmitterSlots[], prebuilt?: PrebuiltBvh): void {
-    const emissiveKey = JSON.stringify(emitters);
-    const emissive = (triangleOrder: Uint32Array) => ({ key: emissiveKey, table: emitters.length > 0 ? new EmissiveTriangles(this.gl, emissiveTriangleRecords(world, triangleOrder, emitters)) : null });
+  setMeshes(world: WorldMeshes, emitters: readonly MeshEmitterSlots[], prebuilt?: PrebuiltBvh, means: ReadonlyMap<number, Float32Array> = new Map()): void {
+    const emissiveKey = JSON.stringify(emitters) + [...means.values()].map((m) => meansId(m)).join(',');
+    const emissive = (triangleOrder: Uint32Array) => ({
+      key: emissiveKey,
+      table: emitters.length > 0 ? new EmissiveTriangles(this.gl, emissiveTriangleRecords(world, triangleOrder, emitters, means)) : null,
+    });
     if (this.bvh && this.bvh.world.key === world.key && this.bvh.world.data === world.data) {
       this.bvh.instances?.update(instanceRecords(world, this.bvh.roots));
       if (this.bvh.emissive.key !== emissiveKey) {
@@ -102,16 +118,23 @@ export class AssetTextures {
     this.bvh?.textures.bind(program, TEXTURE_UNITS.bvh);
     this.bvh?.emissive.table?.bind(program, TEXTURE_UNITS.emissiveTriangles);
     this.bvh?.instances?.bind(program, TEXTURE_UNITS.instances);
+    this.textures.bind(program);
   }
 
   dispose(): void {
     this.setEnvironmentMap(null);
+    this.textures.dispose();
     this.bvh?.textures.dispose();
     this.bvh?.emissive.table?.dispose();
     this.bvh?.instances?.dispose();
     this.bvh = null;
   }
 }
+
+/** A stable id per means array (the emissive table is rebuilt when they change). */
+const MEANS_IDS = new WeakMap<Float32Array, number>();
+let nextMeansId = 0;
+const meansId = (m: Float32Array) => MEANS_IDS.get(m) ?? (MEANS_IDS.set(m, ++nextMeansId), nextMeansId);
 
 /** The instance table as a one-row RGBA32F texture (scene/layout.glsl uInstances), and its count. */
 class InstanceTable {

@@ -14,7 +14,7 @@ import { EXRLoader } from './vendor/EXRLoader.js';
 import { FloatType } from 'three';
 import { AssetError } from '../assetError';
 import type { EnvironmentImage } from '../types';
-import { checkEnvironmentSize } from './limits';
+import { checkEnvironmentSize, type SizeCheck } from './limits';
 
 const EXR_MAGIC = 20000630;
 const COMPRESSIONS = ['NONE', 'RLE', 'ZIPS', 'ZIP', 'PIZ', 'PXR24', 'B44', 'B44A', 'DWAA', 'DWAB'];
@@ -57,7 +57,7 @@ function readChannelNames(view: DataView, start: number, end: number): string[] 
 }
 
 /** Walks the header's attributes (name, type, size, value) up to the empty name. */
-export function readExrHeader(bytes: Uint8Array): ExrHeader {
+export function readExrHeader(bytes: Uint8Array, checkSize: SizeCheck = checkEnvironmentSize): ExrHeader {
   if (bytes.length < 8) fail('truncated OpenEXR file (no header)');
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
   if (view.getUint32(0, true) !== EXR_MAGIC) fail('not an OpenEXR file (bad magic number)');
@@ -93,7 +93,7 @@ export function readExrHeader(bytes: Uint8Array): ExrHeader {
   const [xMin, yMin, xMax, yMax] = box;
   const width = xMax - xMin + 1;
   const height = yMax - yMin + 1;
-  checkEnvironmentSize(width, height, fail);
+  checkSize(width, height, fail);
   const hasRgb = ['R', 'G', 'B'].every((c) => channels.includes(c));
   if (!hasRgb && !channels.includes('Y')) fail(`OpenEXR file has no R, G, B (or Y) channels (it has ${channels.join(', ') || 'none'})`);
   return { width, height, compression: COMPRESSIONS[compression], channels, tiled: (flags & 0x200) !== 0, tableStart: pos + 1 };
@@ -112,8 +112,8 @@ function checkChunks(bytes: Uint8Array, header: ExrHeader): void {
   }
 }
 
-export function decodeExr(bytes: Uint8Array): EnvironmentImage {
-  const header = readExrHeader(bytes);
+export function decodeExr(bytes: Uint8Array, checkSize: SizeCheck = checkEnvironmentSize): EnvironmentImage {
+  const header = readExrHeader(bytes, checkSize);
   if (!header.tiled) checkChunks(bytes, header);
   const buffer = bytes.slice().buffer; // EXRLoader wants an ArrayBuffer of the file alone
   let parsed: { width: number; height: number; data: ArrayLike<number> };

@@ -12,6 +12,9 @@
 export const MAX_ENVIRONMENT_WIDTH = 8192;
 export const MAX_ENVIRONMENT_HEIGHT = 4096;
 
+/** Checks a file's size from its header; throws through `fail`. The texture decoders (src/scene/texture/) pass their own limits. */
+export type SizeCheck = (width: number, height: number, fail: (message: string) => never) => void;
+
 /** Throws unless width x height lies within the limits (shared by the decoders). */
 export function checkEnvironmentSize(width: number, height: number, fail: (message: string) => never): void {
   if (!Number.isInteger(width) || !Number.isInteger(height) || width < 1 || height < 1) {

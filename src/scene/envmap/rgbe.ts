@@ -11,7 +11,7 @@
  */
 import { AssetError } from '../assetError';
 import type { EnvironmentImage } from '../types';
-import { checkEnvironmentSize } from './limits';
+import { checkEnvironmentSize, type SizeCheck } from './limits';
 
 const MAX_HEADER_BYTES = 64 * 1024;
 
@@ -19,7 +19,7 @@ function fail(message: string): never {
   throw new AssetError(message);
 }
 
-interface RgbeHeader {
+export interface RgbeHeader {
   width: number;
   height: number;
   /** Byte offset of the first scanline. */
@@ -35,7 +35,7 @@ function readLine(bytes: Uint8Array, start: number): { text: string; next: numbe
   return { text, next: end + 1 };
 }
 
-function readHeader(bytes: Uint8Array): RgbeHeader {
+export function readRgbeHeader(bytes: Uint8Array, checkSize: SizeCheck = checkEnvironmentSize): RgbeHeader {
   let line = readLine(bytes, 0);
   if (!line || !/^#\?(RADIANCE|RGBE)\b/.test(line.text)) fail('not a Radiance .hdr file (it must start with "#?RADIANCE" or "#?RGBE")');
   let format: string | null = null;
@@ -54,7 +54,7 @@ function readHeader(bytes: Uint8Array): RgbeHeader {
   if (!size) fail(`unsupported Radiance image size line "${sizeLine.text.slice(0, 40)}" (only the standard "-Y height +X width")`);
   const height = Number(size[1]);
   const width = Number(size[2]);
-  checkEnvironmentSize(width, height, fail);
+  checkSize(width, height, fail);
   return { width, height, dataStart: sizeLine.next };
 }
 
@@ -100,8 +100,8 @@ function writePixel(out: Float32Array, index: number, r: number, g: number, b: n
   out[index + 2] = b * scale;
 }
 
-export function decodeRgbe(bytes: Uint8Array): EnvironmentImage {
-  const { width, height, dataStart } = readHeader(bytes);
+export function decodeRgbe(bytes: Uint8Array, checkSize: SizeCheck = checkEnvironmentSize): EnvironmentImage {
+  const { width, height, dataStart } = readRgbeHeader(bytes, checkSize);
   const rgb = new Float32Array(width * height * 3);
   const plane = new Uint8Array(width * 4);
   let pos = dataStart;

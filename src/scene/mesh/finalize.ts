@@ -1,6 +1,6 @@
 /**
- * The checks every mesh decoder ends with: finite vertices, normals and
- * texture coordinates (one per vertex), indices in range, degenerate (zero-area) triangles dropped, at least one
+ * The checks every mesh decoder ends with: finite vertices, normals,
+ * texture coordinates and tangents (one per vertex), indices in range, degenerate (zero-area) triangles dropped, at least one
  * triangle left. Decoders build raw arrays; this turns them into a
  * TriangleMesh or throws an AssetError saying what is wrong.
  */
@@ -16,6 +16,8 @@ export interface RawMesh {
   uvs?: ArrayLike<number> | null;
   /** 2 per vertex, a second set (glTF TEXCOORD_1); null or absent when there is none. */
   uvs1?: ArrayLike<number> | null;
+  /** 4 per vertex (glTF TANGENT, xyz and w), (0, 0, 0, 0) where none is given; null or absent when there is none. */
+  tangents?: ArrayLike<number> | null;
 }
 
 export function finalizeMesh(raw: RawMesh): TriangleMesh {
@@ -28,6 +30,7 @@ export function finalizeMesh(raw: RawMesh): TriangleMesh {
   // Vertices are never reindexed here (triangles are only dropped), so per-vertex arrays stay aligned.
   const uvs = raw.uvs ? checkedUvs(raw.uvs, vertexCount, 'texture coordinate') : null;
   const uvs1 = raw.uvs1 ? checkedUvs(raw.uvs1, vertexCount, 'second texture coordinate (TEXCOORD_1)') : null;
+  const tangents = raw.tangents ? normalizedTangents(raw.tangents, vertexCount) : null;
   if (raw.indices.length % 3 !== 0) throw new AssetError(`the index count ${raw.indices.length} is not a multiple of 3`);
   const kept = new Uint32Array(raw.indices.length);
   let keptCount = 0;
@@ -47,7 +50,30 @@ export function finalizeMesh(raw: RawMesh): TriangleMesh {
   }
   if (raw.indices.length === 0) throw new AssetError('the file has no triangles');
   if (keptCount === 0) throw new AssetError('every triangle of the file has zero area');
-  return { positions, normals, indices: kept.slice(0, keptCount), uvs, uvs1 };
+  return { positions, normals, indices: kept.slice(0, keptCount), uvs, uvs1, tangents };
+}
+
+/**
+ * Unit xyz and w = +-1 (its sign). A zero xyz or a zero w says nothing about
+ * the frame: that vertex gets (0, 0, 0, 0), none given (MikkTSpace fills it in).
+ */
+function normalizedTangents(source: ArrayLike<number>, vertexCount: number): Float32Array {
+  if (source.length !== vertexCount * 4) throw new AssetError(`the file gives ${source.length / 4} tangents for ${vertexCount} vertices`);
+  const tangents = new Float32Array(vertexCount * 4);
+  for (let v = 0; v < vertexCount; v++) {
+    const x = source[v * 4];
+    const y = source[v * 4 + 1];
+    const z = source[v * 4 + 2];
+    const w = source[v * 4 + 3];
+    if (!Number.isFinite(x) || !Number.isFinite(y) || !Number.isFinite(z) || !Number.isFinite(w)) throw new AssetError(`vertex ${v} has a non-finite tangent`);
+    const length = Math.hypot(x, y, z);
+    if (length === 0 || w === 0) continue;
+    tangents[v * 4] = x / length;
+    tangents[v * 4 + 1] = y / length;
+    tangents[v * 4 + 2] = z / length;
+    tangents[v * 4 + 3] = Math.sign(w);
+  }
+  return tangents;
 }
 
 /** 2 finite floats per vertex, exactly one pair per vertex. */

@@ -4,7 +4,9 @@
  * TRIANGLE_FAN) of the default scene (else the first), with its node's world
  * transform applied, merged into one mesh. Smooth when every primitive has
  * NORMAL; texture coordinates TEXCOORD_0 (and TEXCOORD_1) as stored when
- * every primitive has them (normalized integer accessors de-quantized).
+ * every primitive has them (normalized integer accessors de-quantized);
+ * TANGENT, through the node's matrix, when a primitive of a smooth mesh has
+ * it (never computed here: see tangents.ts).
  * Materials, textures, skins and morph targets are ignored.
  *
  * A `.gltf` may name external buffers (`"uri": "mesh.bin"`): they are read
@@ -17,7 +19,7 @@ import { KHRONOS_EXTENSIONS } from '@gltf-transform/extensions';
 import { AssetError } from '../assetError';
 import type { TriangleMesh } from '../types';
 import { finalizeMesh } from './finalize';
-import { applyMatrix, type Mat4 } from './transform';
+import { applyMatrix, applyMatrixToTangents, type Mat4 } from './transform';
 
 export type ResourceResolver = (uri: string) => Promise<Uint8Array>;
 
@@ -130,13 +132,36 @@ function collectTriangles(document: Document): TriangleMesh {
   const normals: number[] | null = smooth ? [] : null;
   const uvs: number[] | null = every('TEXCOORD_0') ? [] : null;
   const uvs1: number[] | null = every('TEXCOORD_1') ? [] : null;
+  // glTF ignores TANGENT without NORMAL; primitives without one get zeros (none given).
+  const tangents: number[] | null = smooth && primitives.some(({ primitive }) => primitive.getAttribute('TANGENT') !== null) ? [] : null;
   const indices: number[] = [];
   for (const { primitive, matrix } of primitives) {
     appendPrimitive(primitive, matrix, positions, normals, indices);
+    if (tangents) appendTangents(primitive, matrix, tangents);
     if (uvs) appendVec2s(primitive, 'TEXCOORD_0', uvs);
     if (uvs1) appendVec2s(primitive, 'TEXCOORD_1', uvs1);
   }
-  return finalizeMesh({ positions, normals, indices, uvs, uvs1 });
+  return finalizeMesh({ positions, normals, indices, uvs, uvs1, tangents });
+}
+
+/** A primitive's TANGENT (xyz, w) through its node's matrix, or zeros (none given) for each vertex when it has none. */
+function appendTangents(primitive: Primitive, matrix: Mat4, out: number[]): void {
+  const accessor = primitive.getAttribute('TANGENT');
+  const count = primitive.getAttribute('POSITION')!.getCount();
+  if (!accessor) {
+    for (let i = 0; i < count * 4; i++) out.push(0);
+    return;
+  }
+  if (accessor.getCount() !== count) throw new AssetError(`a glTF primitive has ${accessor.getCount()} TANGENT for ${count} vertices`);
+  if (accessor.getElementSize() !== 4) throw new AssetError(`a glTF primitive's TANGENT has ${accessor.getElementSize()} components, not 4 (VEC4)`);
+  const local = new Float64Array(count * 4);
+  const element = [0, 0, 0, 0];
+  for (let i = 0; i < count; i++) {
+    accessor.getElement(i, element); // de-quantizes normalized integer data
+    for (let k = 0; k < 4; k++) local[i * 4 + k] = element[k];
+  }
+  const world = applyMatrixToTangents(matrix, local);
+  for (let i = 0; i < count * 4; i++) out.push(world[i]);
 }
 
 /** A primitive's texture coordinates as stored (normalized integers de-quantized), one pair per vertex of its POSITION. */

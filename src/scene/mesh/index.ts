@@ -14,7 +14,8 @@ import { decodePly } from './ply';
 
 export type { ResourceResolver } from './gltf';
 export { encodePly } from './plyEncode';
-export { meshToWorldMatrix, transformMesh, applyMatrix, inverseAffine, type MeshTransform } from './transform';
+export { meshToWorldMatrix, transformMesh, applyMatrix, applyMatrixToTangents, inverseAffine, type MeshTransform } from './transform';
+export { meshTangents } from './tangents';
 
 export const MESH_EXTENSIONS = ['.obj', '.ply', '.gltf', '.glb'] as const;
 

@@ -107,13 +107,45 @@ export function applyMatrix(m: Mat4, positions: ArrayLike<number>, normals: Arra
   return { positions: outP, normals: outN, mirrored: det < 0 };
 }
 
-/** A world-space copy of `mesh` (object to world per the scene format); texture coordinates are kept as they are (shared, not copied). */
+/**
+ * Tangents (x, y, z, w per vertex, bitangent = cross(n, xyz) * w) by `m`:
+ * xyz is a direction along the surface (dp/du), so it goes through the
+ * upper 3x3 itself, renormalized. A mirroring `m` turns cross(n', t') over
+ * relative to the transformed bitangent m * b, since cross(m t, m b) =
+ * det(m) m^-T cross(t, b): w takes det's sign, so that the bitangent still
+ * points up the image (toward decreasing v) on the transformed surface.
+ * A (0, 0, 0, 0) tangent (none given) stays so.
+ */
+export function applyMatrixToTangents(m: Mat4, tangents: ArrayLike<number>): Float64Array {
+  const count = Math.floor(tangents.length / 4);
+  const out = new Float64Array(count * 4);
+  const sign = cofactors(m).det < 0 ? -1 : 1;
+  for (let i = 0; i < count; i++) {
+    const x = tangents[i * 4];
+    const y = tangents[i * 4 + 1];
+    const z = tangents[i * 4 + 2];
+    const tx = m[0] * x + m[4] * y + m[8] * z;
+    const ty = m[1] * x + m[5] * y + m[9] * z;
+    const tz = m[2] * x + m[6] * y + m[10] * z;
+    const length = Math.hypot(tx, ty, tz);
+    const k = length > 0 ? 1 / length : 0;
+    out[i * 4] = tx * k;
+    out[i * 4 + 1] = ty * k;
+    out[i * 4 + 2] = tz * k;
+    out[i * 4 + 3] = length > 0 ? tangents[i * 4 + 3] * sign : 0;
+  }
+  return out;
+}
+
+/** A world-space copy of `mesh` (object to world per the scene format), tangents included; texture coordinates are kept as they are (shared, not copied). */
 export function transformMesh(mesh: TriangleMesh, transform: MeshTransform): TriangleMesh {
-  const world = applyMatrix(meshToWorldMatrix(transform), mesh.positions, mesh.normals);
+  const m = meshToWorldMatrix(transform);
+  const world = applyMatrix(m, mesh.positions, mesh.normals);
   let indices = mesh.indices;
   if (world.mirrored) {
     indices = mesh.indices.slice();
     for (let t = 0; t < indices.length; t += 3) [indices[t + 1], indices[t + 2]] = [indices[t + 2], indices[t + 1]];
   }
-  return { positions: Float32Array.from(world.positions), normals: world.normals ? Float32Array.from(world.normals) : null, indices, uvs: mesh.uvs ?? null, uvs1: mesh.uvs1 ?? null };
+  const tangents = mesh.tangents ? Float32Array.from(applyMatrixToTangents(m, mesh.tangents)) : null;
+  return { positions: Float32Array.from(world.positions), normals: world.normals ? Float32Array.from(world.normals) : null, indices, uvs: mesh.uvs ?? null, uvs1: mesh.uvs1 ?? null, tangents };
 }

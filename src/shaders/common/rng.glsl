@@ -61,6 +61,11 @@ vec4 rand4() {
   return vec4(toUnit(h.xy), toUnit(h.zw));
 }
 
+// A uniform number in [0, 1) keyed by `event` instead of a sequence
+// dimension (the pass-through decisions at cut-outs, whose count varies
+// along a path): independent of every dimension's values.
+float randEvent(uint event) { return toUnit(pcg4d(uvec4(rngPixelKey, rngSampleIndex, 0x80000000u | event)).xy).x; }
+
 #if LOW_DISCREPANCY
 // The low-discrepancy points of the current sample (see the top).
 vec2 ldCamera() { return toUnit(rngShift01.xy + rngSampleIndex * LD_GENERATOR_CAMERA); }

@@ -10,7 +10,8 @@ float environmentEmitterPdf() { return readHeader(0).environmentPdf; }
 int planarLightCount() { return readHeader(0).planarLightCount; }
 
 int sphereTexel(int i, int field) { return SPHERES_FIRST + i * SPHERE_RECORD_TEXELS + field; }
-vec4 sphereGeometry(int i) { return sceneData(sphereTexel(i, SPHERE_RECORD_CENTER_TEXEL)); }
+// center.xyz, radius; in row 0 (layout/scene.ts), so the row is a constant.
+vec4 sphereGeometry(int i) { return texelFetch(uSceneData, ivec2(SPHERE_GEOMETRY_FIRST + i, 0), 0); }
 SphereRecord loadSphere(int i) { return readSphereRecord(sphereTexel(i, 0)); }
 Material loadMaterial(int i) { return readMaterial(MATERIALS_FIRST + i * MATERIAL_TEXELS); }
 Emitter loadEmitter(int i) { return readEmitter(EMITTERS_FIRST + i * EMITTER_TEXELS); }

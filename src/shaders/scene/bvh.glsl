@@ -71,6 +71,7 @@ struct BvhSurface {
   vec3 geometricNormal; // unit, from the counter-clockwise winding v0 v1 v2
   vec3 shadingNormal;   // interpolated vertex normal (smooth), else the geometric normal
   vec2 uv;              // interpolated corner texture coordinates, (0, 0) without
+  vec3 dpdu, dpdv;      // normal maps: the triangle's position derivatives along u and v (0 without uvs)
   int localMaterial;  // among the mesh's own: the table's is its MeshRecord.materialBase + this
   int mesh;
 };
@@ -246,6 +247,18 @@ vec3 bvhUnitOrZero(vec3 v) {
 // vertex normal renormalized before interpolation as a world-space copy's
 // are (src/scene/mesh/transform.ts applyMatrix), so an instance shades as
 // its copy would; the position stays in the triangle's space.
+#if HAS_NORMAL_MAPS
+// dp/du and dp/dv of a triangle with edges e1, e2 and texture-coordinate
+// edges d1, d2 (pbrt's Triangle::InteractionFromIntersection); zero when
+// its coordinates are degenerate (a normal map then keeps the normal).
+void bvhPositionDerivatives(vec3 e1, vec3 e2, vec2 d1, vec2 d2, out vec3 dpdu, out vec3 dpdv) {
+  float det = d1.x * d2.y - d1.y * d2.x;
+  float inv = abs(det) > 1e-20 ? 1.0 / det : 0.0;
+  dpdu = (d2.y * e1 - d1.y * e2) * inv;
+  dpdv = (d1.x * e2 - d2.x * e1) * inv;
+}
+#endif
+
 BvhSurface bvhSurface(BvhHit hit, mat3 normalMatrix) {
   int texel = bvhTriangleTexel(hit.triangle);
   vec4 t0 = bvhTexel(uBvh, texel);
@@ -278,11 +291,16 @@ BvhSurface bvhSurface(BvhHit hit, mat3 normalMatrix) {
   }
   // Per-corner data in the triangle's own space: an instance's transform leaves them alone.
   s.uv = vec2(0.0);
+  s.dpdu = vec3(0.0);
+  s.dpdv = vec3(0.0);
   if (textured) {
     int k = attributes >= 0 ? attributes + 3 : -2 - attributes;
     vec4 uv01 = bvhTexel(uBvh, k);
     vec2 uv2 = bvhTexel(uBvh, k + 1).xy;
     s.uv = b.x * uv01.xy + b.y * uv01.zw + b.z * uv2;
+#if HAS_NORMAL_MAPS
+    bvhPositionDerivatives(t1.xyz - t0.xyz, t2.xyz - t0.xyz, uv01.zw - uv01.xy, uv2 - uv01.xy, s.dpdu, s.dpdv);
+#endif
   }
   s.localMaterial = int(t0.w);
   s.mesh = int(t2.w);

@@ -72,6 +72,11 @@ BvhSurface meshSurface(MeshHit hit) {
   mat3 normalMatrix = mat3(r.toObjectX.xyz, r.toObjectY.xyz, r.toObjectZ.xyz);  // columns: the transpose
   BvhSurface s = bvhSurface(hit.triangle, normalMatrix);
   s.position = instancePoint(r.toWorldX, r.toWorldY, r.toWorldZ, s.position);
+#if HAS_NORMAL_MAPS
+  mat3 toWorld = transpose(mat3(r.toWorldX.xyz, r.toWorldY.xyz, r.toWorldZ.xyz));
+  s.dpdu = toWorld * s.dpdu;
+  s.dpdv = toWorld * s.dpdv;
+#endif
   s.mesh = r.mesh >= 0 ? r.mesh : s.mesh;
   return s;
 }

@@ -20,6 +20,9 @@ struct Hit {
   vec3 geometricNormal;  // offsets spawned rays (equal to `normal` but on smooth meshes)
   vec2 uv;          // texture coordinates: triangles' interpolated from their corners ((0, 0)
                     // without), the ground's world (x, z), spheres' (0, 0)
+  vec4 tangent;     // normal maps: xyz along increasing u, w = 1 or -1 so that
+                    // cross(normal, xyz) * w points up the image (toward decreasing v);
+                    // xyz 0 without texture coordinates
   float scale;      // size of the hit object, for the self-intersection offset
   vec4 geometry;    // the sphere hit: [center, radius]; a planar light: [slot, emitter tag, 0, 0]
   int material;     // index into the material table
@@ -85,6 +88,7 @@ void planarLightHit(inout Hit hit, vec3 origin, vec3 direction, int i, float t) 
   hit.normal = normalize(cross(l.u, l.v));
   hit.geometricNormal = hit.normal;
   hit.uv = vec2(0.0);
+  hit.tangent = vec4(0.0, 0.0, 0.0, 1.0);
   hit.scale = 0.0;
   hit.geometry = vec4(float(i), float(l.kind), 0.0, 0.0);
   hit.material = l.material;
@@ -111,7 +115,7 @@ Hit intersectScene(vec3 origin, vec3 direction) {
 
   // Both surfaces are derived and the right one selected (see sphereHitT).
   SphereRecord record = loadSphere(sphere);
-  vec4 geometry = vec4(record.center, record.radius);
+  vec4 geometry = sphereGeometry(sphere);
   vec3 p = origin + hit.t * direction;
   vec3 sphereNormal = normalize(p - geometry.xyz);
   vec3 spherePosition = geometry.xyz + geometry.w * sphereNormal;  // re-projected onto the surface
@@ -124,6 +128,7 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   hit.emitterPdf = isGround ? 0.0 : record.emitterPdf;
   hit.geometricNormal = hit.normal;
   hit.uv = isGround ? groundPosition.xz : vec2(0.0);
+  hit.tangent = vec4(isGround ? vec3(1.0, 0.0, 0.0) : vec3(0.0), 1.0);  // the ground: u = x, v = z
 #if HAS_PLANAR_LIGHTS
   // As for spheres: the loop keeps the nearest distance and slot only.
   float tPlanar = INFINITY;
@@ -145,6 +150,10 @@ Hit intersectScene(vec3 origin, vec3 direction) {
     hit.normal = s.shadingNormal;
     hit.geometricNormal = s.geometricNormal;
     hit.uv = s.uv;
+#if HAS_NORMAL_MAPS
+    // glTF's rule: the bitangent points up the image, also on a mirrored chart.
+    hit.tangent = vec4(s.dpdu, dot(cross(s.shadingNormal, s.dpdu), s.dpdv) > 0.0 ? -1.0 : 1.0);
+#endif
     hit.scale = 0.0;
     MeshRecord mesh = loadMesh(s.mesh);
     hit.material = mesh.materialBase + s.localMaterial;
