@@ -8,6 +8,7 @@ import type { DisplayOptions } from '../render/passes/display';
 import type { SamplerKind } from '../render/sampling';
 import { loadSceneAssets, NO_ASSETS, type SceneAssets } from '../scene/assets';
 import { unpackAssets, type AssetManifest } from '../node/assetTransfer';
+import { decodeImageOffThread } from '../render/images/decodeImages';
 import type { Scene } from '../scene/types';
 import { runKernel, type KernelRequest } from './kernels';
 // Registers window.pathtraceEnvironmentKernels (environment-map test kernels).
@@ -138,6 +139,7 @@ function sameFiles(files: Record<string, string>): SceneAssets {
   return {
     maps: new Map([...assets.maps].filter(([name]) => same(name))),
     meshes: new Map([...assets.meshes].filter(([name]) => same(name))),
+    images: new Map([...(assets.images ?? [])].filter(([name]) => same(name))),
   };
 }
 
@@ -184,9 +186,11 @@ const api: HeadlessApi = {
   async load(scene, options, files = {}, decoded) {
     const known = decoded ? unpackAssets(decoded, await fetchBlock(decoded.url)) : sameFiles(files);
     const assets = await loadSceneAssets(scene, async (name) => {
+      const encoded = known.encodedImages?.get(name);
+      if (encoded) return encoded;
       if (!(name in files)) throw new Error('no such file was given to the page');
       return bytesFromBase64(files[name]);
-    }, known);
+    }, known, decodeImageOffThread);
     rememberFiles(files, assets);
     const kind = JSON.stringify([options.sampler ?? 'kronecker', options.russianRoulette ?? false]);
     if (!reuseTracer(scene, options, assets, kind)) {
