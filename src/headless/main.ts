@@ -32,6 +32,13 @@ export interface LoadOptions {
   aovs?: boolean;
 }
 
+/** What load reports: the renderer, the textures' GPU bytes and their warnings (images halved to fit the device). */
+export interface LoadResult {
+  renderer: string;
+  textureBytes?: number;
+  warnings?: string[];
+}
+
 /** What readOutputs returns, and for what. */
 export interface OutputRequest {
   /** The image's size (the tracer's). */
@@ -64,7 +71,7 @@ export interface HeadlessApi {
    * written; decoded here. `decoded`: files decoded already (by Node), as a
    * block this page fetches from the session's server (src/node/assetTransfer.ts).
    */
-  load(scene: Scene, options: LoadOptions, files?: Record<string, string>, decoded?: AssetManifest): Promise<{ renderer: string }>;
+  load(scene: Scene, options: LoadOptions, files?: Record<string, string>, decoded?: AssetManifest): Promise<LoadResult>;
   /**
    * Renders `samples` more spp in draws of `samplesPerDraw` and at most
    * `pathsPerDraw` paths (PathTracer.pathsPerDraw; unchanged when omitted),
@@ -199,7 +206,8 @@ const api: HeadlessApi = {
       tracerKind = kind;
       loseContextExtension = tracer.gl.getExtension('WEBGL_lose_context');
     }
-    return { renderer: tracer!.renderer };
+    const textures = tracer!.textures;
+    return { renderer: tracer!.renderer, textureBytes: textures.bytes, warnings: [...textures.warnings] };
   },
   render(samples, samplesPerDraw, pathsPerDraw) {
     const t = requireTracer();
