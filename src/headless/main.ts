@@ -18,6 +18,7 @@ import { Program, ShaderCompileError } from '../render/gl/program';
 import { sceneDefines } from '../render/shaderChunks';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/shaderSources';
 import './bvhKernels'; // window.pathtraceBvh: the BVH traversal kernel for test/browser/bvh-*.test.ts
+import './textureKernels'; // window.pathtraceTextureKernels: the texture lookup kernel for test/browser/texture-lookup.test.ts
 import './imageDecoding'; // window.pathtraceImages: the texture image Worker, for test/browser/texture-decode.test.ts
 import { denoiseArrays, denoiseImage, fromBase64, type DenoiseRequest, type DenoiseResult } from './denoise';
 import { displayLinear } from './displayLinear';
