@@ -274,9 +274,11 @@ const scale = (v: Vec3, s: number): Vec3 => [v[0] * s, v[1] * s, v[2] * s];
 
 /**
  * The texture table (layout/scene.ts TEXTURE): one record per distinct
- * texture and input, written as materials ask for their index.
+ * texture and input, written as materials ask for their index. Exported for
+ * the texture-lookup kernel (src/headless/textureKernels.ts), which packs
+ * its textures with it.
  */
-class TextureTable {
+export class TextureTable {
   private readonly indices = new Map<string, number>();
   readonly formats = new Set<AtlasFormat>();
 
@@ -285,7 +287,7 @@ class TextureTable {
     private readonly placement?: (image: string, input: TextureInput) => Placement,
   ) {}
 
-  index({ texture: t, input }: MaterialTexture): number {
+  index({ texture: t, input }: Pick<MaterialTexture, 'texture' | 'input'>): number {
     const key = JSON.stringify([t, input]);
     const known = this.indices.get(key);
     if (known !== undefined) return known;

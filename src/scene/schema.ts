@@ -9,7 +9,7 @@
  */
 import * as z from 'zod';
 import {
-  allowedOnGround, defaultMaterial, materialTextures, MATERIAL_KEYS, materialSchema, normalizeMaterial, SOLID_DESCRIPTIONS, UNKNOWN_TYPE_MESSAGE,
+  allowedOnGround, defaultMaterial, KINDS, materialTextures, MATERIAL_KEYS, materialSchema, normalizeMaterial, SOLID_DESCRIPTIONS, UNKNOWN_TYPE_MESSAGE,
 } from '../materials/registry';
 import { LIGHT_KEYS, lightSchema, normalizeLight, UNKNOWN_LIGHT_TYPE_MESSAGE } from '../lights/registry';
 import { MAX_BOUNCES, MAX_IMAGE_SIZE, MAX_LIGHTS, MAX_MESHES, MAX_SCENE_BYTES, MAX_SPHERES } from './limits';
@@ -18,6 +18,7 @@ import {
 } from './schemaParts';
 import type { Camera, Environment, Ground, Light, Material, Mesh, Scene, Sphere, Vec3 } from './types';
 import { versionIssues } from './version';
+import { TEXTURE_KEYS, UV_KEYS } from './texture/texture';
 import { SceneError, type SafeParseResult, type SceneIssue } from './issues';
 
 export { MAX_COORDINATE, MAX_INTENSITY };
@@ -176,7 +177,21 @@ const KNOWN_KEYS: Record<string, readonly string[]> = {
   'meshes[]': Object.keys(meshShape),
   'meshes[].material': materialKeys,
   'meshes[].material.emission': Object.keys(emissionShape),
+  ...textureKnownKeys(['ground.material', 'spheres[].material', 'meshes[].material']),
 };
+
+/** The keys of a texture object (and its `uv`) at every material input that may be one. */
+function textureKnownKeys(materials: readonly string[]): Record<string, readonly string[]> {
+  const inputs = KINDS.flatMap((k) => [
+    ...(k.textures ?? []).map((t) => [t.key, t.input] as const),
+    ...(k.opacity ? [['opacity', 'scalar'] as const] : []),
+    ...(k.normalMap ? [['normalMap', 'normal'] as const] : []),
+    ...(k.texturedEmission ? [['emission.color', 'color'] as const] : []),
+  ]);
+  return Object.fromEntries(
+    materials.flatMap((m) => inputs.flatMap(([key, input]) => [[`${m}.${key}`, TEXTURE_KEYS[input]], [`${m}.${key}.uv`, UV_KEYS]])),
+  );
+}
 
 function distance(a: Vec3, b: Vec3): number {
   return Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);

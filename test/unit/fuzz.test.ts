@@ -303,6 +303,34 @@ const validScene = fc.record(
   { requiredKeys: ['camera'] },
 );
 
+/** Version 3: a textured principled ground (every texture key, each optional). */
+const angle = fc.double({ min: -1e6, max: 1e6, noNaN: true });
+const uvTransform = fc.record({ offset: fc.tuple(angle, angle), scale: fc.tuple(angle, angle), rotation: angle }, { requiredKeys: [] });
+const imageName = fc.constantFrom('a.png', 'dir/b.jpg', 'c d.webp', 'e.exr');
+const scalarTexture = fc.record(
+  { image: imageName, channel: fc.constantFrom('r', 'g', 'b', 'a'), scale: fc.double({ min: 0, max: 1e6, noNaN: true }), uv: uvTransform, cutoff: unit },
+  { requiredKeys: ['image'] },
+);
+const colorTexture = fc.record({ image: imageName, scale: fc.oneof(fc.double({ min: 0, max: 1e6, noNaN: true }), fc.tuple(unit, unit, unit)), uv: uvTransform }, { requiredKeys: ['image'] });
+const texturedGround = fc.record({
+  version: fc.constant(3),
+  camera: fc.constant({ position: [0, 1, 5], target: [0, 0, 0] }),
+  ground: fc.record({
+    material: fc.record(
+      {
+        type: fc.constant('principled'),
+        baseColor: fc.oneof(albedo, colorTexture),
+        metallic: fc.oneof(unit, scalarTexture),
+        roughness: fc.oneof(unit, scalarTexture),
+        clearcoat: fc.oneof(unit, scalarTexture),
+        opacity: fc.oneof(unit, scalarTexture),
+        normalMap: fc.record({ image: imageName, scale: angle, uv: uvTransform }, { requiredKeys: ['image'] }),
+      },
+      { requiredKeys: ['type'] },
+    ),
+  }),
+});
+
 // ---------------------------------------------------------------- properties
 
 describe('fuzzing parseScene', () => {
@@ -316,6 +344,18 @@ describe('fuzzing parseScene', () => {
         expect(parseSceneText(JSON.stringify(serializeScene(result.scene))), 'serialize, stringify, parse text changed the scene').toStrictEqual(result.scene);
       }),
       { numRuns: 1000 },
+    );
+  });
+
+  it('accepts and round-trips generated textured scenes (version 3)', () => {
+    fc.assert(
+      fc.property(texturedGround, (json) => {
+        const result = safeParseScene(json);
+        if (!result.ok) throw new Error(`rejected a valid scene: ${JSON.stringify(result.issues)}`);
+        checkScene(result.scene);
+        expect(parseScene(serializeScene(result.scene))).toStrictEqual(result.scene);
+      }),
+      { numRuns: 300 },
     );
   });
 

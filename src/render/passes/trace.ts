@@ -156,6 +156,11 @@ export class TracePass {
     );
   }
 
+  /** The texture atlas's GPU bytes and its warnings (images halved to fit the device). */
+  get textures(): { bytes: number; warnings: readonly string[] } {
+    return { bytes: this.assets.textures.bytes, warnings: this.assets.textures.warnings };
+  }
+
   /** The features of the current scene: other passes compile their variants with featureDefines(features). */
   get features(): SceneFeatures {
     if (!this.current) throw new Error('TracePass: no scene uploaded');
