@@ -10,7 +10,7 @@ export interface Emission {
   /** The color, or a texture's scale (as a color) when `texture` is set. */
   color: Vec3;
   intensity: number;
-  /** Version 3 (principled): the color is this texture (times `color`, its scale). */
+  /** Version 3 (kinds whose emission may be textured): the color is this texture (times `color`, its scale). */
   texture?: Texture;
 }
 

@@ -240,7 +240,7 @@ vec3 principledDeltaTint(Bsdf b, vec3 wo, vec3 wi) { return vec3(1.0); }
 // Mitsuba's eval_diffuse_reflectance.
 vec3 principledAlbedo(Bsdf b) { return principledParams(b).baseColor; }
 // The diffuse lobe's share of the sampling outside (the caustic guides may
-// take it over, as the standard material's diffuse weight).
+// take over the diffuse part of the sampling, as for every kind).
 float principledGuideWeight(Bsdf b) {
   PrincipledParams p = principledParams(b);
   float brdf = principledBrdf(p);
