@@ -12,18 +12,10 @@ import { EMITTER, HEADER, MATERIAL, PLANAR_LIGHT, SECTIONS } from '../render/lay
 import { unpackMaterial } from '../materials/registry';
 import { parseScene } from '../scene/schema';
 import { EMITTER_KINDS, lightDispatchGlsl, lightPower, unpackEmitter } from './registry';
+import { readRecord as read } from '../../test/support/records';
 
 const lightsJson = JSON.parse(readFileSync(new URL('../../test/fixtures/scenes/lights.json', import.meta.url), 'utf8'));
 
-function read(data: Float32Array, first: number, layout: { texels: number; fields: { name: string; type: string; texel: number; offset: number }[] }, index: number) {
-  const base = (first + index * layout.texels) * 4;
-  const out: Record<string, number | number[]> = {};
-  for (const f of layout.fields) {
-    const at = base + f.texel * 4 + f.offset;
-    out[f.name] = f.type === 'vec3' ? Array.from(data.subarray(at, at + 3)) : data[at];
-  }
-  return out;
-}
 const emitterAt = (data: Float32Array, i: number) => unpackEmitter(data.subarray((SECTIONS.emitters + i * EMITTER.texels) * 4, (SECTIONS.emitters + (i + 1) * EMITTER.texels) * 4));
 
 describe('light registry: packing', () => {

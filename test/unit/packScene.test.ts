@@ -11,6 +11,7 @@ import { packScene } from '../../src/render/packScene';
 import { parseScene } from '../../src/scene/schema';
 import { DATA_ROWS, SCENE_ROW_TEXELS, TABLE_TEXELS, sceneLayoutDefines } from '../../src/render/layout/scene';
 import { MAX_SPHERES } from '../../src/scene/limits';
+import { readRecord } from '../support/records';
 
 const camera = { position: [0, 1, 5], target: [0, 0, 0] };
 
@@ -18,15 +19,6 @@ const camera = { position: [0, 1, 5], target: [0, 0, 0] };
 /** A sphere's center.xyz and radius from the sphere-geometry table. */
 const sphereGeometry = (data: Float32Array, i: number) => Array.from(data.subarray((SECTIONS.sphereGeometry + i) * 4, (SECTIONS.sphereGeometry + i) * 4 + 4));
 
-function readRecord(data: Float32Array, first: number, layout: typeof SPHERE, index: number): Record<string, number | number[]> {
-  const base = (first + index * layout.texels) * 4;
-  const out: Record<string, number | number[]> = {};
-  for (const f of layout.fields) {
-    const at = base + f.texel * 4 + f.offset;
-    out[f.name] = f.type === 'vec3' ? Array.from(data.subarray(at, at + 3)) : data[at];
-  }
-  return out;
-}
 
 /** Material record `index` of the table, read back through its kind's layout. */
 function readMaterial(data: Float32Array, index: number) {

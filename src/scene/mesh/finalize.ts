@@ -104,14 +104,20 @@ function normalizedNormals(source: ArrayLike<number>, vertexCount: number): Floa
   return normals;
 }
 
-/** Exactly zero area (in double precision over the float32 coordinates), repeated vertices included. */
-function isDegenerate(p: Float32Array, a: number, b: number, c: number): boolean {
-  if (a === b || b === c || a === c) return true;
+/** cross(p[b] - p[a], p[c] - p[a]) in double precision: twice the triangle's area along its winding's normal. */
+export function triangleCross(p: Float32Array, a: number, b: number, c: number): [number, number, number] {
   const e1x = p[b * 3] - p[a * 3];
   const e1y = p[b * 3 + 1] - p[a * 3 + 1];
   const e1z = p[b * 3 + 2] - p[a * 3 + 2];
   const e2x = p[c * 3] - p[a * 3];
   const e2y = p[c * 3 + 1] - p[a * 3 + 1];
   const e2z = p[c * 3 + 2] - p[a * 3 + 2];
-  return e1y * e2z - e1z * e2y === 0 && e1z * e2x - e1x * e2z === 0 && e1x * e2y - e1y * e2x === 0;
+  return [e1y * e2z - e1z * e2y, e1z * e2x - e1x * e2z, e1x * e2y - e1y * e2x];
+}
+
+/** Exactly zero area (in double precision over the float32 coordinates), repeated vertices included. */
+function isDegenerate(p: Float32Array, a: number, b: number, c: number): boolean {
+  if (a === b || b === c || a === c) return true;
+  const [x, y, z] = triangleCross(p, a, b, c);
+  return x === 0 && y === 0 && z === 0;
 }

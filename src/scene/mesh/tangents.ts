@@ -22,6 +22,7 @@
  */
 import type { TriangleMesh } from '../types';
 import { loadMikkTSpace, type GenerateTangents } from './mikktspace';
+import { triangleCross } from './finalize';
 
 /**
  * The tangent frame at every triangle corner of `mesh`, for its normal map:
@@ -112,15 +113,7 @@ function cornerAttributes(mesh: TriangleMesh, uv: Float32Array): { positions: Fl
 
 /** The unit normal of triangle (a, b, c) by its winding; zero for a zero-area triangle. */
 function faceNormal(p: Float32Array, a: number, b: number, c: number, out: number[]): void {
-  const e1x = p[b * 3] - p[a * 3];
-  const e1y = p[b * 3 + 1] - p[a * 3 + 1];
-  const e1z = p[b * 3 + 2] - p[a * 3 + 2];
-  const e2x = p[c * 3] - p[a * 3];
-  const e2y = p[c * 3 + 1] - p[a * 3 + 1];
-  const e2z = p[c * 3 + 2] - p[a * 3 + 2];
-  const x = e1y * e2z - e1z * e2y;
-  const y = e1z * e2x - e1x * e2z;
-  const z = e1x * e2y - e1y * e2x;
+  const [x, y, z] = triangleCross(p, a, b, c);
   const length = Math.hypot(x, y, z);
   const k = length > 0 ? 1 / length : 0;
   out[0] = x * k;
