@@ -65,21 +65,24 @@ ShadingNormal shadingNormal(Material m, Surface s, vec3 facing, vec3 toViewer) {
   r.base = facing;
   r.a2 = 0.0;
 #if HAS_NORMAL_MAPS
+  // Branch-free (selects): SwiftShader's compile time grows steeply with
+  // control flow inside the bounce loop.
   int t = materialNormalMap(m);
   vec3 x = s.tangent.xyz - s.normal * dot(s.normal, s.tangent.xyz);
-  if (t < 0 || dot(x, x) <= 0.0) return r;
-  vec3 n = textureNormal(t, s.uv);
-  x = normalize(x);
+  bool mapped = t >= 0 && dot(x, x) > 0.0;
+  vec3 n = textureNormal(max(t, 0), s.uv);
+  x = normalize(mapped ? x : vec3(1.0, 0.0, 0.0));
   // The frame of the front side; from behind only z turns over (twosided),
   // so the tilt along the surface is kept.
   vec3 y = cross(s.normal, x) * s.tangent.w;
   vec3 p = normalize(n.x * x + n.y * y + n.z * facing);
   // flip_invalid_normals: the viewer below the perturbed hemisphere mirrors
   // the normal's tangential part.
-  if (dot(toViewer, p) <= 0.0) p = normalize(2.0 * dot(p, facing) * facing - p);
+  vec3 flipped = normalize(2.0 * dot(p, facing) * facing - p);
+  p = dot(toViewer, p) <= 0.0 ? flipped : p;
   float c = clamp(dot(p, facing), 1e-6, 1.0);
-  r.normal = p;
-  r.a2 = min(0.125 * (1.0 - c * c) / (c * c), 1.0);
+  r.normal = mapped ? p : facing;
+  r.a2 = mapped ? min(0.125 * (1.0 - c * c) / (c * c), 1.0) : 0.0;
 #endif
   return r;
 }
@@ -91,9 +94,9 @@ ShadingNormal shadingNormal(Material m, Surface s, vec3 facing, vec3 toViewer) {
 float normalMapFactor(ShadingNormal n, vec3 wi) {
 #if HAS_NORMAL_MAPS
   float c = dot(wi, n.base);
-  if (c * dot(wi, n.normal) <= 0.0) return 0.0;
   float c2 = max(c * c, 1e-12);
-  return 2.0 / (1.0 + sqrt(1.0 + n.a2 * (1.0 - c2) / c2));
+  float term = 2.0 / (1.0 + sqrt(1.0 + n.a2 * (1.0 - c2) / c2));
+  return c * dot(wi, n.normal) > 0.0 ? term : 0.0;
 #else
   return 1.0;
 #endif
