@@ -10,10 +10,11 @@ import { MAX_BOUNCES } from '../scene/limits';
 import { defaultMaterial, mainColorKey } from '../materials/registry';
 import type { Ground, Material, Vec3 } from '../scene/types';
 import type { App } from './App';
-import { addSphereMaterialControls } from './materialControls';
+import { addSphereMaterialControls, materialLayoutKey } from './materialControls';
 import { addMeshControls } from './meshControls';
 import { addEnvironmentControls } from './environmentControls';
 import type { EnvironmentMaps } from './environmentMaps';
+import type { TextureImages } from './textureImages';
 
 const DEFAULT_GROUND: Ground = { height: 0, material: defaultMaterial() };
 
@@ -27,6 +28,8 @@ export class Panel {
     private readonly app: App,
     container: HTMLElement,
     maps: EnvironmentMaps | null = null,
+    /** The meshes' texture slots (absent: no slots). */
+    private readonly images: TextureImages | null = null,
   ) {
     this.gui = new GUI({ container, title: 'Controls' });
     this.selectionFolder = this.gui.addFolder('Selection');
@@ -45,12 +48,12 @@ export class Panel {
     for (const controller of this.gui.controllersRecursive()) controller.updateDisplay();
   }
 
-  /** What the selection folder was built for: the object and, for a sphere, its material type (type-specific controls). */
+  /** What the selection folder was built for: the object and its material's layout (its type's controls, the inputs that are textures). */
   private currentSelectionKey(): string {
     const s = this.app.selection;
     if (!s) return '';
-    const type = s.kind === 'light' ? '' : (s.kind === 'sphere' ? this.app.scene.spheres : this.app.scene.meshes)[s.index]?.material.type;
-    return `${s.kind}:${s.index}:${type ?? ''}`;
+    const material = s.kind === 'light' ? undefined : (s.kind === 'sphere' ? this.app.scene.spheres : this.app.scene.meshes)[s.index]?.material;
+    return `${s.kind}:${s.index}:${material ? materialLayoutKey(material) : ''}`;
   }
 
   /** Wires a controller's changes into the edit history. */
@@ -71,7 +74,8 @@ export class Panel {
     const light = () => app.scene.lights[s.index];
     const edit = (f: () => void) => app.live(f);
     if (s.kind === 'mesh') {
-      addMeshControls(folder, app, () => app.scene.meshes[s.index], (c) => this.tracked(c));
+      const slots = this.images?.slotsFor((scene) => scene.meshes[s.index]?.material);
+      addMeshControls(folder, app, () => app.scene.meshes[s.index], (c) => this.tracked(c), slots);
     } else if (s.kind === 'sphere') {
       addSphereMaterialControls(folder, app, sphere, (c) => this.tracked(c));
       this.tracked(folder.add({
