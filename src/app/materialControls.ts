@@ -100,8 +100,9 @@ function setAsideFor(sphere: Sphere): SetAside {
 
 /**
  * Adds the controls for `sphere()`'s material to `folder`. The type-specific
- * ones depend on the type at build time: the panel rebuilds the folder when
- * the type changes (its selection key includes the type).
+ * ones depend on the type at build time, and which inputs are textures: the
+ * panel rebuilds the folder when they change (its selection key includes
+ * materialLayoutKey).
  */
 export function addSphereMaterialControls(
   folder: GUI,
@@ -111,7 +112,6 @@ export function addSphereMaterialControls(
   slots?: TextureSlots,
 ): void {
   const material = () => sphere().material;
-  const edit = (mutate: (m: Record<string, unknown>) => void) => app.live(() => mutate(material() as unknown as Record<string, unknown>));
   const labels = Object.fromEntries(MATERIAL_TYPES.map((t) => [kindLabel(t), t]));
   tracked(folder.add({
     get type() { return material().type; },
@@ -124,26 +124,43 @@ export function addSphereMaterialControls(
       });
     },
   }, 'type', labels).name('material'));
-  for (const control of materialControls(material())) {
-    const textured = slots && controlTextureInput(control) !== null;
-    const value = () => (material() as unknown as Record<string, unknown>)[control.key];
-    if (textured && (control.control === 'texture' || isTexture(value()))) {
-      addTextureSlot(folder, control, value, slots, () => app.edit(() => withoutTexture(material(), control.key, setAsideFor(sphere()).constants[control.key])));
-      continue;
-    }
-    if (control.control === 'texture') continue; // no texture coordinates: nothing to show
-    const controller = tracked(addKindControl(folder, control, material, edit));
-    if (textured) {
-      // The constant is set aside before the image loads: clearing the texture brings it back.
-      const use = (action: () => void) => () => {
-        setAsideFor(sphere()).constants[control.key] = structuredClone(value());
-        action();
-      };
-      addImageButton(controller.$widget, () => use(() => slots.openFilePicker(control.key))());
-      acceptImageDrops(controller.domElement, (file) => use(() => slots.useFile(control.key, file))());
-    }
-  }
+  for (const control of materialControls(material())) addMaterialInput(folder, app, control, sphere, tracked, slots);
   addEmissionControls(folder, app, sphere, tracked);
+}
+
+/**
+ * The control of one input of `owner()`'s material: its constant's or, with
+ * `slots`, while it is a texture, its texture slot (a texturable constant
+ * then has an "image…" button and takes dropped images). Null for an input
+ * that is only ever a texture, without slots.
+ */
+export function addMaterialInput(
+  folder: GUI,
+  app: App,
+  control: MaterialControl,
+  owner: () => Sphere,
+  tracked: <T extends Controller>(controller: T) => T,
+  slots?: TextureSlots,
+): Controller | null {
+  const material = () => owner().material;
+  const edit = (mutate: (m: Record<string, unknown>) => void) => app.live(() => mutate(material() as unknown as Record<string, unknown>));
+  const textured = slots && controlTextureInput(control) !== null;
+  const value = () => (material() as unknown as Record<string, unknown>)[control.key];
+  if (textured && (control.control === 'texture' || isTexture(value()))) {
+    return addTextureSlot(folder, control, value, slots, () => app.edit(() => withoutTexture(material(), control.key, setAsideFor(owner()).constants[control.key])));
+  }
+  if (control.control === 'texture') return null; // no texture coordinates: nothing to show
+  const controller = tracked(addKindControl(folder, control, material, edit));
+  if (textured) {
+    // The constant is set aside before the image loads: clearing the texture brings it back.
+    const setAsideThen = (action: () => void) => {
+      setAsideFor(owner()).constants[control.key] = structuredClone(value());
+      action();
+    };
+    addImageButton(controller.$widget, () => setAsideThen(() => slots.openFilePicker(control.key)));
+    acceptImageDrops(controller.domElement, (file) => setAsideThen(() => slots.useFile(control.key, file)));
+  }
+  return controller;
 }
 
 /**

@@ -76,6 +76,10 @@ describe('texture slots on the page', () => {
     // The box's base color is the grid image: a slot with its name and size; its roughness a constant.
     expect(await control(page, 'base color').locator('input').inputValue()).toBe('grid.png, 128×128');
     expect(await control(page, 'roughness').locator('input').first().inputValue()).toBe('0.35');
+    // The ground's textured color and roughness: slots too.
+    const ground = page.locator('.lil-gui').filter({ has: page.locator('> .lil-title', { hasText: /^Ground$/ }) });
+    const groundSlot = (label: string) => ground.locator('.lil-controller').filter({ has: page.locator('.lil-name', { hasText: new RegExp(`^${label}$`) }) }).locator('input');
+    expect([await groundSlot('color').inputValue(), await groundSlot('roughness').inputValue()]).toEqual(['checker.png, 256×256', 'rough.png, 128×128']);
 
     // A PNG dropped on the roughness: a texture of it, one undoable edit; the render changes.
     let restarts = await watchRestarts(page);
