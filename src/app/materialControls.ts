@@ -179,7 +179,10 @@ function addTextureSlot(folder: GUI, control: MaterialControl, value: () => unkn
   };
   const controller = folder.add(shown, 'value').name(control.label);
   const input = controller.domElement.querySelector('input');
-  if (input) input.readOnly = true;
+  if (input) {
+    input.readOnly = true;
+    input.title = shown.value; // the panel is narrow: the whole name on hover (the panel rebuilds the slot for another image)
+  }
   controller.domElement.classList.add('texture-slot');
   controller.domElement.dataset.textureKey = control.key;
   addImageButton(controller.$widget, () => slots.openFilePicker(control.key));
