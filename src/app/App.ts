@@ -11,6 +11,7 @@ import { cameraRay } from '../scene/camera';
 import { pickObject, pickSurface, projectSphere, type MeshLookup, type ObjectHit, type ObjectKind } from '../scene/picking';
 import type { Camera, Scene, Vec3 } from '../scene/types';
 import { defaultMaterial } from '../materials/registry';
+import { createLight, lightExtent, lightPosition, type LightType } from '../lights/registry';
 import { History } from './history';
 import { LiveDenoiser } from './liveDenoise';
 import { worldBoundingSphere } from './meshFit';
@@ -36,6 +37,9 @@ const SETTLE_MS = 250;
 const MOVING_SCALE = 0.5;
 
 const clone = (scene: Scene): Scene => structuredClone(scene);
+
+/** The least radius a selected light's handle shows (points and spots have none of their own). */
+const LIGHT_HANDLE_RADIUS = 0.1;
 
 export class App {
   scene: Scene;
@@ -184,10 +188,10 @@ export class App {
     this.select({ kind: 'sphere', index: this.scene.spheres.length - 1 });
   }
 
-  addLight(): void {
+  addLight(type: LightType = 'sphere'): void {
     if (this.scene.lights.length >= MAX_LIGHTS) return;
     const { target } = this.scene.camera;
-    this.edit((s) => s.lights.push({ position: [target[0] + 1, target[1] + 3, target[2] + 1], radius: 0.3, color: [1, 1, 1], intensity: 40 }));
+    this.edit((s) => s.lights.push(createLight(type, target)));
     this.select({ kind: 'light', index: this.scene.lights.length - 1 });
   }
 
@@ -208,13 +212,17 @@ export class App {
     const s = this.selection;
     if (!s) return null;
     if (s.kind === 'mesh') return this.scene.meshes[s.index]?.position ?? null;
-    return s.kind === 'sphere' ? this.scene.spheres[s.index]?.center ?? null : this.scene.lights[s.index]?.position ?? null;
+    if (s.kind === 'sphere') return this.scene.spheres[s.index]?.center ?? null;
+    const light = this.scene.lights[s.index];
+    return light ? lightPosition(light) : null;
   }
 
   selectedRadius(): number {
     const s = this.selection;
     if (!s) return 0;
-    return (s.kind === 'sphere' ? this.scene.spheres[s.index]?.radius : this.scene.lights[s.index]?.radius) ?? 0;
+    if (s.kind === 'sphere') return this.scene.spheres[s.index]?.radius ?? 0;
+    const light = this.scene.lights[s.index];
+    return light ? Math.max(lightExtent(light)?.radius ?? 0, LIGHT_HANDLE_RADIUS) : 0;
   }
 
   // ------------------------------------------------------------ picking

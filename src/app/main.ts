@@ -10,6 +10,7 @@ import { safeParseScene } from '../scene/schema';
 import { defaultScene, PRESET_NAMES, PRESETS } from '../scene/presets';
 import { stringifyScene } from '../scene/serialize';
 import { App } from './App';
+import { assetReferences } from '../scene/assets';
 import { downloadBlob, readSceneFile, rgba8ToPngBlob, sceneFromHash, shareHash } from './files';
 import { attachInput, attachKeys } from './input';
 import { clearError, notify, showError, showFatal, showIssues } from './messages';
@@ -22,6 +23,7 @@ import { bundledMapName } from './bundledMaps';
 import { MAP_EXAMPLES, MESH_EXAMPLES, TEXTURE_EXAMPLES } from './examples';
 import { Panel } from './panel';
 import { TextureImages } from './textureImages';
+import { LIGHT_TYPE_NAMES, lightLabel, type LightType } from '../lights/registry';
 import { encodePfm } from '../image/pfm';
 import type { RenderStats } from './renderLoop';
 import type { DenoiseState } from './liveDenoise';
@@ -173,7 +175,10 @@ function wireToolbar(app: App, loader: SceneLoader): void {
     });
   });
   click('add-sphere', () => app.addSphere());
-  click('add-light', () => app.addLight());
+  // "+ Light" adds a light of the kind chosen beside it (a sphere unless changed).
+  const lightKind = $<HTMLSelectElement>('light-kind');
+  for (const type of LIGHT_TYPE_NAMES) lightKind.add(new Option(lightLabel(type), type));
+  click('add-light', () => app.addLight(lightKind.value as LightType));
   click('delete', () => app.deleteSelection());
   click('undo', () => app.undo());
   click('redo', () => app.redo());
@@ -272,9 +277,9 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader, maps: Envi
     autosave.linkDigest = linkDigest(hash); // reloading this address keeps later edits
     autosave.schedule();
     const url = location.href;
-    const env = app.scene.environment;
-    // A user's map file cannot travel in a link: say so where the link is made.
-    const ownMap = env && 'map' in env && !bundledMapName(env.map) ? ` It names your map "${env.map}", which a link cannot carry: whoever opens it must open that file too.` : '';
+    // A user's files (maps, models, texture images) cannot travel in a link: say so where the link is made.
+    const own = [...new Set(assetReferences(app.scene).filter((r) => !(r.kind === 'map' && bundledMapName(r.file))).map((r) => `"${r.file}"`))];
+    const ownMap = own.length > 0 ? ` It names your ${own.length > 1 ? 'files' : 'file'} ${own.join(', ')}, which a link cannot carry: whoever opens it must open ${own.length > 1 ? 'those files' : 'that file'} too.` : '';
     navigator.clipboard?.writeText(url).then(
       () => notify(`Link copied: it carries the whole scene.${ownMap}`, ownMap ? 8000 : undefined),
       () => notify(`The page address now carries the scene: copy it from the address bar.${ownMap}`, ownMap ? 8000 : undefined),

@@ -8,7 +8,9 @@ import { TONEMAPS } from '../render/toneMaps';
 import { hexToLinear, linearToHex } from '../scene/color';
 import { MAX_BOUNCES } from '../scene/limits';
 import { defaultMaterial, mainColorKey, materialControls } from '../materials/registry';
-import type { Ground } from '../scene/types';
+import { lightControls } from '../lights/registry';
+import type { LightControl } from '../lights/kind';
+import type { Ground, Vec3 } from '../scene/types';
 import type { App } from './App';
 import { addMaterialInput, addSphereMaterialControls, materialLayoutKey } from './materialControls';
 import { addMeshControls } from './meshControls';
@@ -88,21 +90,35 @@ export class Panel {
         set radius(v: number) { edit(() => (sphere().radius = v)); },
       }, 'radius', 0.01, 10, 0.01));
     } else {
-      this.tracked(folder.addColor({
-        get color() { return linearToHex(light().color); },
-        set color(v: string) { edit(() => (light().color = hexToLinear(v))); },
-      }, 'color'));
-      this.tracked(folder.add({
-        get intensity() { return light().intensity; },
-        set intensity(v: number) { edit(() => (light().intensity = v)); },
-      }, 'intensity', 0, 500, 0.5));
-      this.tracked(folder.add({
-        get radius() { return light().radius; },
-        set radius(v: number) { edit(() => (light().radius = v)); },
-      }, 'radius', 0.01, 5, 0.01));
+      for (const c of lightControls(light())) this.addLightControl(folder, c, () => light() as unknown as Record<string, unknown>);
     }
     folder.add({ remove: () => app.deleteSelection() }, 'remove').name('Delete');
     folder.open();
+  }
+
+  /** One of a light kind's controls (src/lights/<kind>/kind.ts), editing the selected light live (no recompile). */
+  private addLightControl(folder: GUI, c: LightControl, light: () => Record<string, unknown>): void {
+    const edit = (f: () => void) => this.app.live(f);
+    if (c.control === 'color') {
+      this.tracked(folder.addColor({
+        get value() { return linearToHex(light()[c.key] as Vec3); },
+        set value(v: string) { edit(() => (light()[c.key] = hexToLinear(v))); },
+      }, 'value').name(c.label));
+    } else if (c.control === 'number') {
+      this.tracked(folder.add({
+        get value() { return light()[c.key] as number; },
+        set value(v: number) { edit(() => (light()[c.key] = v)); },
+      }, 'value', c.min, c.max, c.step).name(c.label));
+    } else {
+      // A vector: one field per component.
+      const size = (light()[c.key] as number[]).length;
+      for (let k = 0; k < size; k++) {
+        this.tracked(folder.add({
+          get value() { return (light()[c.key] as number[])[k]; },
+          set value(v: number) { edit(() => ((light()[c.key] as number[])[k] = v)); },
+        }, 'value').name(`${c.label} ${'xyz'[k]}`));
+      }
+    }
   }
 
   /**

@@ -92,6 +92,7 @@ export async function renderCommand(sceneFile: string, raw: RawRenderOptions, ct
       loadAssets,
     ).catch(assetsFirst);
     progress.stop();
+    for (const warning of result.warnings ?? []) ctx.stderr.write(`warning: ${warning}\n`);
     const outputs: { path: string; data: Uint8Array }[] = [{ path: pngPath, data: encodePng(width, height, result.displayed) }];
     if (hdrPath !== undefined && result.linear) outputs.push({ path: hdrPath, data: encodePfm(width, height, result.linear) });
     if (args.aov && result.guides) {
@@ -198,6 +199,8 @@ interface RenderedImages {
   guides?: Guides;
   spp: number;
   seconds: number;
+  /** The page's warnings (textures halved to fit the device). */
+  warnings?: string[];
 }
 
 async function renderImages(
@@ -212,7 +215,8 @@ async function renderImages(
 ): Promise<RenderedImages> {
   progress.status('loading scene and compiling the shader...');
   // Decoded here already (loadSceneFiles): the page takes the arrays and does not decode the files again.
-  await session.load(scene, { width: size.width, height: size.height, seed: args.seed }, {}, assets);
+  const loaded = await session.load(scene, { width: size.width, height: size.height, seed: args.seed }, {}, assets);
+  const warnings = loaded.warnings ?? [];
   mark('scene loaded in the page');
   progress.start();
   const { spp, seconds } = await renderBudget(session, args.budget, progress, now);
@@ -232,7 +236,7 @@ async function renderImages(
       checkLength('albedo guide', guides.albedo.length, pixels * 4);
       checkLength('normal guide', guides.normal.length, pixels * 4);
     }
-    return { displayed: out.displayed, linear: out.linear, guides, spp, seconds };
+    return { displayed: out.displayed, linear: out.linear, guides, spp, seconds, warnings };
   }
   let guides: Guides | undefined;
   if (args.aov) {
@@ -244,7 +248,7 @@ async function renderImages(
   if (args.denoise) {
     progress.status('denoising...');
     const denoised = await denoiseFinalImage(session, size, { exposure: args.exposure, toneMap: args.toneMap }, guides);
-    return { ...denoised, guides, spp, seconds };
+    return { ...denoised, guides, spp, seconds, warnings };
   }
   const displayed = await session.readDisplayed({ exposure: args.exposure, toneMap: args.toneMap });
   checkLength('displayed image', displayed.length, pixels * 4);
@@ -253,7 +257,7 @@ async function renderImages(
     linear = await session.readLinear();
     checkLength('linear image', linear.length, pixels * 4);
   }
-  return { displayed, linear, guides, spp, seconds };
+  return { displayed, linear, guides, spp, seconds, warnings };
 }
 
 function checkLength(what: string, got: number, expected: number): void {

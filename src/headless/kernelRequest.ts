@@ -7,7 +7,7 @@
 import { MATERIAL_TEXELS, packMaterial } from '../materials/registry';
 import type { Material } from '../scene/types';
 
-export const KERNELS = ['sampleCone', 'sampleMaterial', 'pdfMaterial'] as const;
+export const KERNELS = ['sampleCone', 'sampleMaterial', 'pdfMaterial', 'sampleRectangle'] as const;
 
 /** guideSetup: pixel 0 = (local cone axis, 1 - cos half angle), others = guide probability. */
 export const GUIDE_KERNELS = ['guideSetup', 'sampleGuided', 'weightGuided', 'weightBsdf', 'pdfGuided', 'pdfCap'] as const;
@@ -30,6 +30,8 @@ export interface KernelRequest {
   point?: [number, number, number];
   normal?: [number, number, number];
   guide?: number[];
+  /** sampleRectangle: the rectangle's centre and half-axes u and v (9 numbers); the viewpoint is `wo`. */
+  rect?: number[];
   /** pdfCap: the cap's axis (local frame) and half angle in radians. */
   cap?: [number, number, number, number];
 }

@@ -8,6 +8,7 @@ import kernelFrag from '../shaders/test/kernels.frag?raw';
 import { featureDefines, sceneDefines } from '../render/shaderChunks';
 import { BASE_FEATURES } from '../render/packScene';
 import { ALL_MATERIAL_FEATURES } from '../materials/registry';
+import { ALL_LIGHT_FEATURES } from '../lights/registry';
 import { SCENE_CHUNKS } from '../render/shaderSources';
 import { runGuideKernel } from './guideKernels';
 import { kernelProgram, runFullScreen } from './kernelHarness';
@@ -17,7 +18,7 @@ export { KERNELS, type KernelName, type KernelRequest } from './kernelRequest';
 
 function kernelsProgram() {
   return kernelProgram('test/kernels.frag', () => {
-    const defines = { ...sceneDefines(), ...featureDefines({ ...BASE_FEATURES, materials: ALL_MATERIAL_FEATURES }), ...Object.fromEntries(KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i])) };
+    const defines = { ...sceneDefines(), ...featureDefines({ ...BASE_FEATURES, materials: ALL_MATERIAL_FEATURES, lights: ALL_LIGHT_FEATURES }), ...Object.fromEntries(KERNELS.map((k, i) => [`KERNEL_${k.toUpperCase()}`, i])) };
     return { fragment: [...SCENE_CHUNKS, { name: 'test/kernels.frag', source: kernelFrag }], defines, sceneBlock: true };
   });
 }
@@ -35,10 +36,18 @@ export function runKernel(request: KernelRequest): Float32Array {
       uWo: request.wo ?? [0, 0, 1],
       uGrid: [request.width, request.height],
       uSeed: request.seed ?? 1,
+      uRect: rectUniform(request.rect),
     },
-    { uKernel: 'int', uParams: 'vec4', uMaterial: 'vec4', uWo: 'vec3', uGrid: 'vec2', uSeed: 'uint' },
+    { uKernel: 'int', uParams: 'vec4', uMaterial: 'vec4', uWo: 'vec3', uGrid: 'vec2', uSeed: 'uint', uRect: 'vec4' },
     request.width,
     request.height,
     { label: `kernel ${request.kernel}` },
   );
+}
+
+/** The rectangle of sampleRectangle as three vec4s (centre, u, v). */
+function rectUniform(rect: number[] = []): Float32Array {
+  const out = new Float32Array(12);
+  for (let i = 0; i < 3; i++) out.set([rect[i * 3] ?? 0, rect[i * 3 + 1] ?? 0, rect[i * 3 + 2] ?? 0], i * 4);
+  return out;
 }

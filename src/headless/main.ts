@@ -8,6 +8,7 @@ import type { DisplayOptions } from '../render/passes/display';
 import type { SamplerKind } from '../render/sampling';
 import { loadSceneAssets, NO_ASSETS, type SceneAssets } from '../scene/assets';
 import { unpackAssets, type AssetManifest } from '../node/assetTransfer';
+import { decodeImageOffThread } from '../render/images/decodeImages';
 import type { Scene } from '../scene/types';
 import { runKernel, type KernelRequest } from './kernels';
 // Registers window.pathtraceEnvironmentKernels (environment-map test kernels).
@@ -17,6 +18,7 @@ import { Program, ShaderCompileError } from '../render/gl/program';
 import { sceneDefines } from '../render/shaderChunks';
 import { SCENE_CHUNKS, VERTEX_CHUNKS } from '../render/shaderSources';
 import './bvhKernels'; // window.pathtraceBvh: the BVH traversal kernel for test/browser/bvh-*.test.ts
+import './textureKernels'; // window.pathtraceTextureKernels: the texture lookup kernel for test/browser/texture-lookup.test.ts
 import './imageDecoding'; // window.pathtraceImages: the texture image Worker, for test/browser/texture-decode.test.ts
 import { denoiseArrays, denoiseImage, fromBase64, type DenoiseRequest, type DenoiseResult } from './denoise';
 import { displayLinear } from './displayLinear';
@@ -29,6 +31,13 @@ export interface LoadOptions {
   russianRoulette?: boolean;
   /** Accumulate the denoiser's guides while rendering (PathTracerOptions.aovs). */
   aovs?: boolean;
+}
+
+/** What load reports: the renderer, the textures' GPU bytes and their warnings (images halved to fit the device). */
+export interface LoadResult {
+  renderer: string;
+  textureBytes?: number;
+  warnings?: string[];
 }
 
 /** What readOutputs returns, and for what. */
@@ -63,7 +72,7 @@ export interface HeadlessApi {
    * written; decoded here. `decoded`: files decoded already (by Node), as a
    * block this page fetches from the session's server (src/node/assetTransfer.ts).
    */
-  load(scene: Scene, options: LoadOptions, files?: Record<string, string>, decoded?: AssetManifest): Promise<{ renderer: string }>;
+  load(scene: Scene, options: LoadOptions, files?: Record<string, string>, decoded?: AssetManifest): Promise<LoadResult>;
   /**
    * Renders `samples` more spp in draws of `samplesPerDraw` and at most
    * `pathsPerDraw` paths (PathTracer.pathsPerDraw; unchanged when omitted),
@@ -138,6 +147,7 @@ function sameFiles(files: Record<string, string>): SceneAssets {
   return {
     maps: new Map([...assets.maps].filter(([name]) => same(name))),
     meshes: new Map([...assets.meshes].filter(([name]) => same(name))),
+    images: new Map([...(assets.images ?? [])].filter(([name]) => same(name))),
   };
 }
 
@@ -184,9 +194,11 @@ const api: HeadlessApi = {
   async load(scene, options, files = {}, decoded) {
     const known = decoded ? unpackAssets(decoded, await fetchBlock(decoded.url)) : sameFiles(files);
     const assets = await loadSceneAssets(scene, async (name) => {
+      const encoded = known.encodedImages?.get(name);
+      if (encoded) return encoded;
       if (!(name in files)) throw new Error('no such file was given to the page');
       return bytesFromBase64(files[name]);
-    }, known);
+    }, known, decodeImageOffThread);
     rememberFiles(files, assets);
     const kind = JSON.stringify([options.sampler ?? 'kronecker', options.russianRoulette ?? false]);
     if (!reuseTracer(scene, options, assets, kind)) {
@@ -195,7 +207,8 @@ const api: HeadlessApi = {
       tracerKind = kind;
       loseContextExtension = tracer.gl.getExtension('WEBGL_lose_context');
     }
-    return { renderer: tracer!.renderer };
+    const textures = tracer!.textures;
+    return { renderer: tracer!.renderer, textureBytes: textures.bytes, warnings: [...textures.warnings] };
   },
   render(samples, samplesPerDraw, pathsPerDraw) {
     const t = requireTracer();

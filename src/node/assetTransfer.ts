@@ -43,11 +43,12 @@ export interface AssetManifest {
   maps: [string, unknown][];
   meshes: [string, unknown][];
   images: [string, unknown][];
+  encodedImages?: [string, unknown][];
 }
 
 /** Whether there is anything to transfer. */
 export function hasAssets(assets: SceneAssets | undefined): assets is SceneAssets {
-  return !!assets && (assets.maps.size > 0 || assets.meshes.size > 0 || (assets.images?.size ?? 0) > 0);
+  return !!assets && (assets.maps.size > 0 || assets.meshes.size > 0 || (assets.images?.size ?? 0) > 0 || (assets.encodedImages?.size ?? 0) > 0);
 }
 
 /** The block and its manifest (`url` left empty for the caller to fill in). */
@@ -71,9 +72,10 @@ export function packAssets(assets: SceneAssets): { manifest: AssetManifest; byte
   const maps = [...assets.maps].map(([name, map]): [string, unknown] => [name, encode(map)]);
   const meshes = [...assets.meshes].map(([name, mesh]): [string, unknown] => [name, encode(mesh)]);
   const images = [...(assets.images ?? [])].map(([name, image]): [string, unknown] => [name, encode(image)]);
+  const encodedImages = [...(assets.encodedImages ?? [])].map(([name, bytes]): [string, unknown] => [name, encode(bytes)]);
   const bytes = new Uint8Array(byteLength);
   for (const { view, offset } of arrays) bytes.set(new Uint8Array(view.buffer, view.byteOffset, view.byteLength), offset);
-  return { manifest: { url: '', byteLength, maps, meshes, images }, bytes };
+  return { manifest: { url: '', byteLength, maps, meshes, images, ...(encodedImages.length > 0 ? { encodedImages } : {}) }, bytes };
 }
 
 /**
@@ -96,5 +98,6 @@ export function unpackAssets(manifest: AssetManifest, block: ArrayBuffer): Scene
     maps: new Map(manifest.maps.map(([name, map]) => [name, decode(map) as EnvironmentImage])),
     meshes: new Map(manifest.meshes.map(([name, mesh]) => [name, decode(mesh) as TriangleMesh])),
     images: new Map((manifest.images ?? []).map(([name, image]) => [name, decode(image) as TextureImage])),
+    ...(manifest.encodedImages ? { encodedImages: new Map(manifest.encodedImages.map(([name, bytes]) => [name, decode(bytes) as Uint8Array])) } : {}),
   };
 }

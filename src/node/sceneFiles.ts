@@ -4,7 +4,7 @@
  */
 import { readFile } from 'node:fs/promises';
 import path from 'node:path';
-import type { SceneAssets } from '../scene/assets';
+import { assetReferences, type SceneAssets } from '../scene/assets';
 import type { Scene } from '../scene/types';
 
 export interface SceneFiles {
@@ -16,21 +16,29 @@ export interface SceneFiles {
 
 /** Reads and decodes every file `scene` names; throws SceneError naming each unusable one (`meshes[0].file: ...`). */
 export async function readSceneFiles(scene: Scene, sceneFile: string): Promise<SceneFiles> {
-  if (!namesFiles(scene)) return { files: {}, assets: { maps: new Map(), meshes: new Map() } };
+  if (!namesFiles(scene)) return { files: {}, assets: { maps: new Map(), meshes: new Map(), images: new Map() } };
   // The decoders (three.js's EXR loader, glTF-Transform, Draco) load only
   // for scenes that need them: the CLI starts fast, and owns Ctrl-C early.
   const { loadSceneAssets } = await import('../scene/assets');
+  const { decodeTextureImage } = await import('../scene/texture/decode');
+  const { imageHeader } = await import('../scene/texture/header');
+  // JPEG and WebP: the header is checked here, the pixels decoded by the
+  // page's Chromium (the browser's own decoder, as on the page).
+  const decodeImage = async (bytes: Uint8Array) => {
+    const { format } = imageHeader(bytes);
+    return format === 'jpeg' || format === 'webp' ? null : decodeTextureImage(bytes);
+  };
   const folder = path.dirname(path.resolve(sceneFile));
   const files: Record<string, Uint8Array> = {};
   const assets = await loadSceneAssets(scene, async (name) => {
     const bytes = new Uint8Array(await readFile(path.resolve(folder, name)));
     files[name] = bytes;
     return bytes;
-  });
+  }, undefined, decodeImage);
   return { files, assets };
 }
 
 /** Whether the scene names any file. */
 export function namesFiles(scene: Scene): boolean {
-  return scene.meshes.length > 0 || (scene.environment !== null && 'map' in scene.environment);
+  return assetReferences(scene).length > 0;
 }

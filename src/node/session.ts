@@ -10,7 +10,7 @@ import type { DisplayOptions } from '../render/passes/display';
 import { TONEMAPS } from '../render/toneMaps';
 import type { SceneAssets } from '../scene/assets';
 import type { Scene } from '../scene/types';
-import type { HeadlessApi, LoadOptions, OutputRequest } from '../headless/main';
+import type { HeadlessApi, LoadOptions, LoadResult, OutputRequest } from '../headless/main';
 import type { KernelRequest } from '../headless/kernels';
 import type { DenoiseRequest } from '../headless/denoise';
 import { hasAssets, packAssets } from './assetTransfer';
@@ -83,7 +83,8 @@ export interface RenderSession {
    * the page decodes, or with them decoded already (`assets`, which the page
    * fetches as raw bytes and does not decode again; what the CLI passes).
    */
-  load(scene: Scene, options: LoadOptions, files?: Record<string, Uint8Array>, assets?: SceneAssets): Promise<{ renderer: string }>;
+  /** The renderer's name; the textures' GPU bytes and warnings (images halved to fit), from pages that report them. */
+  load(scene: Scene, options: LoadOptions, files?: Record<string, Uint8Array>, assets?: SceneAssets): Promise<LoadResult>;
   /**
    * Renders `samples` more samples per pixel, split into draws of about
    * DRAW_TARGET_MS (tiles of a sample when one sample is more; the first

@@ -180,6 +180,11 @@ export class PathTracer {
     return rendererInfo(this.gl);
   }
 
+  /** The current scene's textures on the GPU: the atlas pages' bytes, and one warning per image stored smaller than its size on this device. */
+  get textures(): { bytes: number; warnings: readonly string[] } {
+    return this.resources?.trace.textures ?? { bytes: 0, warnings: [] };
+  }
+
   get currentScene(): Scene {
     return this.scene;
   }

@@ -2,19 +2,25 @@
  * Scene -> the packed arrays the shaders read (layout: layout/scene.ts).
  * Pure: no GL, so it is unit-tested directly.
  *
- * Each `lights` entry becomes a sphere with an emitter-only material; every
- * sphere whose material emits is also an emitter. Light sampling picks an
- * emitter in proportion to its power through an alias table.
+ * Each sphere light becomes a sphere with an emitter-only material; every
+ * sphere whose material emits is also an emitter. Rectangle and disk lights
+ * go into the planar-light table (with emitter-only materials), point,
+ * spot and directional lights into the emitter table only
+ * (src/lights/registry.ts). Light sampling picks an emitter in proportion
+ * to its power through an alias table.
  */
-import { materialFeatures, materialSeeThrough, materialTextures, packEmitterOnly, packMaterial, type MaterialTexture } from '../materials/registry';
+import { materialFeatures, materialSeeThrough, materialTextures, textureSlotFeatures, packEmitterOnly, packMaterial, type MaterialTexture } from '../materials/registry';
 import { CHANNELS, type TextureInput } from '../scene/texture/texture';
 import { ATLAS_FORMATS, type AtlasFormat, type Placement } from './textures/atlas';
+import {
+  type Light, lightArea, lightEmitted, lightExtent, lightFeatures, lightPower, lightSphere, packEmitter, packLightEmitter, packPlanarLight,
+} from '../lights/registry';
 import type { Material, Scene, Vec3 } from '../scene/types';
 import { buildAliasTable } from './aliasTable';
 import type { MeshGroups } from './bvh/groups';
 import { selectCausticGuides, type GuideSphere } from './causticGuides';
 import {
-  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MAX_TEXTURES, MESH, SECTIONS, SPHERE, TEXTURE,
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MAX_TEXTURES, MESH, PLANAR_LIGHT, SECTIONS, SPHERE, TEXTURE,
 } from './layout/scene';
 import { packRecord } from './layout/records';
 
@@ -24,6 +30,8 @@ export interface SceneFeatures {
   guides: number;
   /** The material kinds whose code is compiled in, besides the default (src/materials/registry.ts). */
   materials: readonly string[];
+  /** The light kinds whose code is compiled in, besides the sphere (src/lights/registry.ts). */
+  lights: readonly string[];
   environmentMap: boolean;
   /** Triangle meshes (the BVH traversal). */
   meshes: boolean;
@@ -37,12 +45,15 @@ export interface SceneFeatures {
   seeThrough: boolean;
   /** Normal maps (the tangent frame and Mitsuba's normalmap adapter). */
   normalMaps: boolean;
+  /** The texture slots some material uses (registry's textureSlotDefine names): only those are compiled. */
+  textureSlots: readonly string[];
 }
 
 /** A scene with nothing optional: spheres of the default material under a constant sky. */
 export const BASE_FEATURES: SceneFeatures = {
   guides: 0,
   materials: [],
+  lights: [],
   environmentMap: false,
   meshes: false,
   emissiveMeshes: false,
@@ -50,6 +61,7 @@ export const BASE_FEATURES: SceneFeatures = {
   textureFormats: [],
   seeThrough: false,
   normalMaps: false,
+  textureSlots: [],
 };
 
 /** What packing needs to know of the scene's decoded files. */
@@ -60,6 +72,8 @@ export interface PackOptions {
   meshes?: readonly { area: number; triangles: number }[];
   /** How the meshes are stored (src/render/bvh/groups.ts), as the BVH was built: instances need their shader code. */
   groups?: MeshGroups;
+  /** Textured emissions: each emissive mesh's area-weighted mean of its texture's luminance (records.ts areaMean), by mesh index. */
+  emissionScale?: ReadonlyMap<number, number>;
   /** Where a texture's image is in the atlas (src/render/textures/atlas.ts), for the inputs it feeds. */
   placement?: (image: string, input: TextureInput) => Placement;
 }
@@ -98,12 +112,20 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
 
   const spheres = sceneSpheres(scene);
   const emitters = spheres.flatMap((s, index) => (power(s) > 0 ? [{ index, sphere: s }] : []));
-  const environmentPower = mapEnvironmentPower(scene, spheres, options.environmentIntegral);
-  const meshEmitters = emissiveMeshes(scene, options.meshes ?? []);
+  const bounds = { radius: sceneRadius(scene, spheres) };
+  const environmentPower = mapEnvironmentPower(scene, bounds.radius, options.environmentIntegral);
+  const meshEmitters = emissiveMeshes(scene, options.meshes ?? [], options.emissionScale);
+  // The other lights' emitters come last, so scenes without them keep version 2's tables.
+  const planarLights = scene.lights.filter((l) => lightArea(l) !== null);
+  const otherLights = scene.lights.filter((l) => lightSphere(l) === null).flatMap((light) => {
+    const p = lightPower(light, bounds);
+    return p > 0 ? [{ light, power: p }] : [];
+  });
   const powers = [
     ...emitters.map((e) => power(e.sphere)),
     ...(environmentPower > 0 ? [environmentPower] : []),
     ...meshEmitters.map((m) => m.power),
+    ...otherLights.map((l) => l.power),
   ];
   const alias = buildAliasTable(powers);
   const emitterPdf = new Map(emitters.map((e, i) => [e.index, alias.pdf[i]]));
@@ -113,26 +135,22 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     data.set([...sphere.center, sphere.radius], (SECTIONS.sphereGeometry + i) * 4);
     data.set(packRecord(SPHERE, { material, emitterPdf: emitterPdf.get(i) ?? 0 }), (SECTIONS.spheres + i * SPHERE.texels) * 4);
   });
+  const setEmitter = (slot: number, record: Float32Array) => data.set(record, (SECTIONS.emitters + slot * EMITTER.texels) * 4);
   emitters.forEach(({ index, sphere }, i) => {
-    const record = packRecord(EMITTER, {
-      center: sphere.center,
-      radius: sphere.radius,
-      radiance: sphere.radiance,
-      pdf: alias.pdf[i],
-      kind: EMITTER_KINDS.sphere,
-      primitive: index,
-    });
-    data.set(record, (SECTIONS.emitters + i * EMITTER.texels) * 4);
+    setEmitter(i, packEmitter({ radiance: sphere.radiance, pdf: alias.pdf[i], kind: EMITTER_KINDS.sphere, primitive: index }, 'sphere', { center: sphere.center, radius: sphere.radius }));
   });
-  if (environmentPower > 0) {
-    const record = packRecord(EMITTER, { pdf: alias.pdf[emitters.length], kind: EMITTER_KINDS.environment, primitive: -1 });
-    data.set(record, (SECTIONS.emitters + emitters.length * EMITTER.texels) * 4);
-  }
+  if (environmentPower > 0) setEmitter(emitters.length, packEmitter({ pdf: alias.pdf[emitters.length], kind: EMITTER_KINDS.environment, primitive: -1 }));
   const firstMesh = emitters.length + (environmentPower > 0 ? 1 : 0);
   meshEmitters.forEach((m, i) => {
     const pdf = alias.pdf[firstMesh + i];
-    const record = packRecord(EMITTER, { radiance: m.radiance, pdf, kind: EMITTER_KINDS.mesh, primitive: m.mesh, first: m.first, count: m.count });
-    data.set(record, (SECTIONS.emitters + (firstMesh + i) * EMITTER.texels) * 4);
+    setEmitter(firstMesh + i, packEmitter({ radiance: m.radiance, pdf, kind: EMITTER_KINDS.mesh, primitive: m.mesh, first: m.first, count: m.count }));
+  });
+  const firstLight = firstMesh + meshEmitters.length;
+  const lightPdfs = new Map<Light, number>(otherLights.map(({ light }, i) => [light, alias.pdf[firstLight + i]]));
+  otherLights.forEach(({ light }, i) => setEmitter(firstLight + i, packLightEmitter(light, alias.pdf[firstLight + i], planarLights.indexOf(light))));
+  planarLights.forEach((light, i) => {
+    const material = addMaterial(packEmitterOnly(lightEmitted(light)));
+    data.set(packPlanarLight(light, material, lightPdfs.get(light) ?? 0), (SECTIONS.planarLights + i * PLANAR_LIGHT.texels) * 4);
   });
   powers.forEach((_, i) => {
     const choice = packRecord(EMITTER_CHOICE, { aliasThreshold: alias.threshold[i], alias: alias.alias[i] });
@@ -154,6 +172,7 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     guideCount: guides.length,
     groundHeight: scene.ground?.height ?? 0,
     groundMaterial,
+    planarLightCount: planarLights.length,
     environment: environment && 'color' in environment ? scale(environment.color, environment.intensity) : [0, 0, 0],
     environmentPdf: environmentPower > 0 ? alias.pdf[emitters.length] : 0,
   });
@@ -171,6 +190,7 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
   const features = {
     guides: guides.length,
     materials: kinds,
+    lights: lightFeatures(scene.lights),
     environmentMap,
     meshes: scene.meshes.length > 0,
     emissiveMeshes: meshEmitters.length > 0,
@@ -178,15 +198,19 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     textureFormats: ATLAS_FORMATS.filter((f) => textures.formats.has(f)),
     seeThrough: sceneMaterials.some(materialSeeThrough),
     normalMaps: sceneMaterials.some((m) => materialTextures(m).some((t) => t.input === 'normal')),
+    textureSlots: textureSlotFeatures(sceneMaterials),
   };
   return { data, block, features, meshMaterials, meshEmitters: meshEmitters.map(({ mesh, first, count }) => ({ mesh, first, count })) };
 }
 
-/** The scene's spheres in shader order: `spheres`, then `lights` as emitter-only spheres. */
+/** The scene's spheres in shader order: `spheres`, then the sphere lights as emitter-only spheres. */
 function sceneSpheres(scene: Scene): SceneSphere[] {
   return [
     ...scene.spheres.map((s) => ({ center: s.center, radius: s.radius, material: s.material, radiance: emittedRadiance(s.material) })),
-    ...scene.lights.map((l) => ({ center: l.position, radius: l.radius, material: 'emitterOnly' as const, radiance: scale(l.color, l.intensity) })),
+    ...scene.lights.flatMap((l) => {
+      const sphere = lightSphere(l);
+      return sphere ? [{ ...sphere, material: 'emitterOnly' as const, radiance: lightEmitted(l) }] : [];
+    }),
   ];
 }
 
@@ -201,19 +225,29 @@ function power(s: SceneSphere): number {
 
 /**
  * Power of the environment map as pbrt-v4 estimates an infinite light's:
- * pi R^2 times its luminance integrated over the sphere, R the radius of a
- * sphere around the scene's objects and camera (at least 1). 0 when the
- * scene has no map or a black one.
+ * pi R^2 times its luminance integrated over the sphere, R the scene's
+ * radius (sceneRadius). 0 when the scene has no map or a black one.
  */
-function mapEnvironmentPower(scene: Scene, spheres: readonly SceneSphere[], integral = 0): number {
+function mapEnvironmentPower(scene: Scene, radius: number, integral = 0): number {
   const environment = scene.environment;
   if (!environment || !('map' in environment) || !(integral > 0) || !(environment.intensity > 0)) return 0;
-  const points = [scene.camera.position, ...spheres.map((s) => s.center), ...scene.meshes.map((m) => m.position)];
-  const center = [0, 1, 2].map((k) => points.reduce((sum, p) => sum + p[k], 0) / points.length);
-  let radius = 1;
-  for (const p of points) radius = Math.max(radius, Math.hypot(p[0] - center[0], p[1] - center[1], p[2] - center[2]));
-  for (const s of spheres) radius = Math.max(radius, Math.hypot(s.center[0] - center[0], s.center[1] - center[1], s.center[2] - center[2]) + s.radius);
   return Math.PI * radius * radius * integral * environment.intensity;
+}
+
+/**
+ * The radius of a sphere around the scene's objects and camera (at least
+ * 1), about their mean position: what an infinite light's power is
+ * measured over (the environment map's, a directional light's).
+ */
+function sceneRadius(scene: Scene, spheres: readonly SceneSphere[]): number {
+  const others = scene.lights.filter((l) => lightSphere(l) === null).flatMap((l) => lightExtent(l) ?? []);
+  const points = [scene.camera.position, ...spheres.map((s) => s.center), ...scene.meshes.map((m) => m.position), ...others.map((o) => o.center)];
+  const center = [0, 1, 2].map((k) => points.reduce((sum, p) => sum + p[k], 0) / points.length);
+  const away = (p: Vec3) => Math.hypot(p[0] - center[0], p[1] - center[1], p[2] - center[2]);
+  let radius = 1;
+  for (const p of points) radius = Math.max(radius, away(p));
+  for (const s of [...spheres, ...others]) radius = Math.max(radius, away(s.center) + s.radius);
+  return radius;
 }
 
 const luminance = (c: Vec3) => 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
@@ -222,12 +256,13 @@ const luminance = (c: Vec3) => 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
  * Meshes whose material emits, with their power (pi * area * luminance: one
  * side emits) and their triangles' slots in the emissive-triangle texture.
  */
-function emissiveMeshes(scene: Scene, sizes: readonly { area: number; triangles: number }[]) {
+function emissiveMeshes(scene: Scene, sizes: readonly { area: number; triangles: number }[], emissionScale?: ReadonlyMap<number, number>) {
   let first = 0;
   return scene.meshes.flatMap((mesh, i) => {
     const radiance = emittedRadiance(mesh.material);
     const size = sizes[i];
-    const power = size ? Math.PI * size.area * luminance(radiance) : 0;
+    const textured = mesh.material.emission?.texture ? (emissionScale?.get(i) ?? 1) : 1;
+    const power = size ? Math.PI * size.area * luminance(radiance) * textured : 0;
     if (!(power > 0)) return [];
     const slots = { mesh: i, first, count: size.triangles, area: size.area, power, radiance };
     first += size.triangles;
@@ -239,9 +274,11 @@ const scale = (v: Vec3, s: number): Vec3 => [v[0] * s, v[1] * s, v[2] * s];
 
 /**
  * The texture table (layout/scene.ts TEXTURE): one record per distinct
- * texture and input, written as materials ask for their index.
+ * texture and input, written as materials ask for their index. Exported for
+ * the texture-lookup kernel (src/headless/textureKernels.ts), which packs
+ * its textures with it.
  */
-class TextureTable {
+export class TextureTable {
   private readonly indices = new Map<string, number>();
   readonly formats = new Set<AtlasFormat>();
 
@@ -250,7 +287,7 @@ class TextureTable {
     private readonly placement?: (image: string, input: TextureInput) => Placement,
   ) {}
 
-  index({ texture: t, input }: MaterialTexture): number {
+  index({ texture: t, input }: Pick<MaterialTexture, 'texture' | 'input'>): number {
     const key = JSON.stringify([t, input]);
     const known = this.indices.get(key);
     if (known !== undefined) return known;

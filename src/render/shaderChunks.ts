@@ -13,7 +13,8 @@ import type { SceneFeatures } from './packScene';
 import { samplingDefines, type SamplerKind } from './sampling';
 import { bvhDefines } from './bvhTextures';
 import { ATLAS_FORMATS } from './textures/atlas';
-import { bsdfDispatchGlsl, surfaceInputsGlsl, MATERIAL_CHUNK_GUARDS, MATERIAL_CHUNK_NAMES, materialDefines, materialFeatureDefines, materialGlsl } from '../materials/registry';
+import { bsdfDispatchGlsl, surfaceInputsGlsl, textureSlotDefines, MATERIAL_CHUNK_GUARDS, MATERIAL_CHUNK_NAMES, materialDefines, materialFeatureDefines, materialGlsl } from '../materials/registry';
+import { emitterGlsl, LIGHT_CHUNK_GUARDS, LIGHT_CHUNK_NAMES, lightDispatchGlsl, lightFeatureDefines } from '../lights/registry';
 
 /** The chunks every kernel that touches the scene needs. */
 export const SCENE_CHUNK_NAMES = [
@@ -23,6 +24,7 @@ export const SCENE_CHUNK_NAMES = [
   'scene/layout.glsl',
   'generated/records.glsl',
   'generated/materials.glsl',
+  'generated/emitters.glsl',
   'scene/access.glsl',
   'scene/bvh.glsl',
   'scene/instances.glsl',
@@ -35,9 +37,12 @@ export const SCENE_CHUNK_NAMES = [
   ...MATERIAL_CHUNK_NAMES,
   'generated/bsdf_dispatch.glsl',
   'bsdf/bsdf.glsl',
-  'lights/sphere_emitter.glsl',
+  'lights/light_sample.glsl',
+  'lights/planar.glsl',
+  ...LIGHT_CHUNK_NAMES,
   'lights/environment_map.glsl',
   'lights/mesh_emitter.glsl',
+  'generated/light_dispatch.glsl',
   'lights/lights.glsl',
   'lights/caustic_guide.glsl',
 ];
@@ -47,6 +52,8 @@ const GENERATED: Record<string, () => string> = {
   'generated/records.glsl': sceneLayoutGlsl,
   'generated/materials.glsl': materialGlsl,
   'generated/bsdf_dispatch.glsl': bsdfDispatchGlsl,
+  'generated/emitters.glsl': emitterGlsl,
+  'generated/light_dispatch.glsl': lightDispatchGlsl,
   'generated/surface_inputs.glsl': () => `#if HAS_SURFACE_INPUTS\n${surfaceInputsGlsl()}\n#endif`,
 };
 
@@ -59,7 +66,7 @@ export function assembleChunks(names: readonly string[], source: (name: string) 
   return names.map((name) => {
     const generated = GENERATED[name];
     if (generated) return { name, source: generated() };
-    const guard = MATERIAL_CHUNK_GUARDS.get(name);
+    const guard = MATERIAL_CHUNK_GUARDS.get(name) ?? LIGHT_CHUNK_GUARDS.get(name);
     return guard ? { name, source: `#if ${guard}\n${source(name)}\n#endif`, lineOffset: 1 } : { name, source: source(name) };
   });
 }
@@ -85,11 +92,14 @@ export function featureDefines(features: SceneFeatures): Record<string, number> 
   return {
     CAUSTIC_GUIDES: features.guides,
     ...materialFeatureDefines(features.materials, surfaceInputs(features)),
+    ...lightFeatureDefines(features.lights),
     HAS_SURFACE_INPUTS: surfaceInputs(features) ? 1 : 0,
     HAS_TEXTURES: features.textureFormats.length > 0 ? 1 : 0,
     ...Object.fromEntries(ATLAS_FORMATS.map((f) => [`HAS_TEXTURES_${f.toUpperCase()}`, features.textureFormats.includes(f) ? 1 : 0])),
     HAS_SEE_THROUGH: features.seeThrough ? 1 : 0,
     HAS_NORMAL_MAPS: features.normalMaps ? 1 : 0,
+    ...textureSlotDefines(features.textureSlots),
+    HAS_TEXTURED_EMISSION: features.textureSlots.some((s) => s.endsWith('_EMISSION')) && features.emissiveMeshes ? 1 : 0,
     HAS_ENV_MAP: features.environmentMap ? 1 : 0,
     HAS_MESHES: features.meshes ? 1 : 0,
     HAS_EMISSIVE_MESHES: features.emissiveMeshes ? 1 : 0,

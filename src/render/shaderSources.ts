@@ -9,11 +9,12 @@ import { assembleChunks, SCENE_CHUNK_NAMES, TRACE_CHUNK_NAMES } from './shaderCh
 const FILES = {
   ...import.meta.glob('../shaders/**/*.{glsl,frag,vert}', { query: '?raw', import: 'default', eager: true }),
   ...import.meta.glob('../materials/**/*.glsl', { query: '?raw', import: 'default', eager: true }),
+  ...import.meta.glob('../lights/**/*.glsl', { query: '?raw', import: 'default', eager: true }),
 } as Record<string, string>;
 
 /** The text of src/shaders/NAME (a material kind's chunk: ../materials/KIND/FILE). */
 export function shaderFile(name: string): string {
-  const path = name.startsWith('../materials/') ? name : `../shaders/${name}`;
+  const path = name.startsWith('../materials/') || name.startsWith('../lights/') ? name : `../shaders/${name}`;
   const text = FILES[path];
   if (text === undefined) throw new Error(`no shader file src/shaders/${name}`);
   return text;

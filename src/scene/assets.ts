@@ -21,6 +21,12 @@ export interface SceneAssets {
   meshes: ReadonlyMap<string, TriangleMesh>;
   /** Texture images (absent: none). */
   images?: ReadonlyMap<string, TextureImage>;
+  /**
+   * JPEG/WebP files whose header was checked but which are left for a
+   * browser to decode (its own decoder: the CLI's Chromium decodes them);
+   * a renderer needs them decoded into `images`.
+   */
+  encodedImages?: ReadonlyMap<string, Uint8Array>;
 }
 
 export const NO_ASSETS: SceneAssets = { maps: new Map(), meshes: new Map(), images: new Map() };
@@ -46,7 +52,7 @@ export interface AssetReference {
 
 /** The texture images a material names, at their scene paths (`meshes[0].material.baseColor.image`). */
 function imageReferences(material: Material, path: string): AssetReference[] {
-  return materialTextures(material).map((t) => ({ kind: 'image', file: t.texture.image, path: `${path}.${t.key}.image` }));
+  return materialTextures(material).map((t) => ({ kind: 'image', file: t.texture.image, path: `${path}.${t.path.join('.')}.image` }));
 }
 
 export function assetReferences(scene: Scene): AssetReference[] {
@@ -58,8 +64,11 @@ export function assetReferences(scene: Scene): AssetReference[] {
   return refs;
 }
 
-/** How a texture image is decoded (in the browser: off the main thread, with its own JPEG/WebP decoder). */
-export type ImageDecoder = (bytes: Uint8Array) => Promise<TextureImage>;
+/**
+ * How a texture image is decoded (in the browser: off the main thread, with
+ * its own JPEG/WebP decoder); null: left for a browser (encodedImages).
+ */
+export type ImageDecoder = (bytes: Uint8Array) => Promise<TextureImage | null>;
 
 const tableOf = (assets: SceneAssets, kind: AssetKind): ReadonlyMap<string, unknown> =>
   kind === 'map' ? assets.maps : kind === 'mesh' ? assets.meshes : (assets.images ?? new Map());
@@ -81,15 +90,21 @@ export async function loadSceneAssets(
   const maps = new Map<string, EnvironmentImage>();
   const meshes = new Map<string, TriangleMesh>();
   const images = new Map<string, TextureImage>();
+  const encodedImages = new Map<string, Uint8Array>();
   const tables: Record<AssetKind, Map<string, unknown>> = { map: maps, mesh: meshes, image: images };
   const issues: SceneIssue[] = [];
   let imageBytes = 0;
   for (const ref of assetReferences(scene)) {
     const table = tables[ref.kind];
-    if (table.has(ref.file)) continue;
+    if (table.has(ref.file) || encodedImages.has(ref.file)) continue;
     const cached = tableOf(known, ref.kind).get(ref.file);
     try {
-      const value = cached ?? (await decode(ref, await read(ref.file), decodeImage));
+      const bytes = cached ? null : await read(ref.file);
+      const value = cached ?? (await decode(ref, bytes!, decodeImage));
+      if (value === null) {
+        encodedImages.set(ref.file, bytes!);
+        continue;
+      }
       if (ref.kind === 'image') {
         imageBytes += textureImageBytes(value as TextureImage);
         if (imageBytes > MAX_TEXTURE_BYTES) throw new AssetError(`the scene's images take more than ${MAX_TEXTURE_BYTES / 2 ** 20} MB decoded`);
@@ -101,7 +116,7 @@ export async function loadSceneAssets(
   }
   issues.push(...textureCoordinateIssues(scene, { maps, meshes, images }));
   if (issues.length > 0) throw new SceneError(issues);
-  return { maps, meshes, images };
+  return { maps, meshes, images, ...(encodedImages.size > 0 ? { encodedImages } : {}) };
 }
 
 async function decode(ref: AssetReference, bytes: Uint8Array, decodeImage: ImageDecoder): Promise<unknown> {

@@ -25,9 +25,12 @@
  *   caller writes it with `meshPlyFile` (world-space triangles, vertex
  *   normals when smooth; `face_normals` when flat, since Mitsuba would
  *   otherwise smooth them).
- * - lights: `sphere` with an `area` emitter (one-sided, emitting along the
- *   outward normal: the format's "all outward directions") and a black
- *   `diffuse` BSDF (lights reflect nothing).
+ * - lights: each kind's own `mitsuba` entry (src/lights/<kind>/kind.ts):
+ *   sphere lights a `sphere` with an `area` emitter (one-sided, emitting
+ *   along the outward normal: the format's "all outward directions") and a
+ *   black `diffuse` BSDF (lights reflect nothing); rectangles and disks the
+ *   same on Mitsuba's `rectangle` and `disk`; `point`, `spot` and
+ *   `directional` emitters.
  * - ground: a `rectangle` (normal +z, [-1, 1]^2) scaled to 40000 x 40000,
  *   rotated so its normal is +y, at y = height, centered under the camera
  *   (so a camera far from the origin still sees ground to the horizon; for
@@ -41,6 +44,7 @@
 import { cameraFrame } from './camera';
 import { encodePly } from './mesh/plyEncode';
 import { transformMesh } from './mesh/transform';
+import { lightExtent, lightMitsuba } from '../lights/registry';
 import { materialBsdf, meshBsdf } from '../materials/registry';
 import { el, float, integer, num, point, rgb, serializeXml, str, triple, type XmlNode } from './mitsubaXml';
 import type { Camera, Material, Mesh, Scene, TriangleMesh, Vec3 } from './types';
@@ -158,7 +162,10 @@ function farClip(scene: Scene): number {
   const dist = (c: Vec3) => Math.hypot(c[0] - p[0], c[1] - p[1], c[2] - p[2]);
   let extent = 0;
   for (const s of scene.spheres) extent = Math.max(extent, dist(s.center) + s.radius);
-  for (const l of scene.lights) extent = Math.max(extent, dist(l.position) + l.radius);
+  for (const l of scene.lights) {
+    const e = lightExtent(l);
+    if (e) extent = Math.max(extent, dist(e.center) + e.radius);
+  }
   return Math.max(MITSUBA_DEFAULT_FAR_CLIP, 2 * extent);
 }
 
@@ -178,17 +185,7 @@ export function toMitsubaXml(scene: Scene, opts: MitsubaExportOptions = {}): str
   if (env) children.push(env);
   const ground = groundShape(scene);
   if (ground) children.push(ground);
-  for (const light of scene.lights) {
-    const radiance = scale3(light.color, light.intensity);
-    children.push(
-      el('shape', { type: 'sphere' }, [
-        point('center', light.position),
-        float('radius', light.radius),
-        el('bsdf', { type: 'diffuse' }, [rgb('reflectance', [0, 0, 0])]),
-        ...(isBlack(radiance) ? [] : [el('emitter', { type: 'area' }, [rgb('radiance', radiance)])]),
-      ]),
-    );
-  }
+  for (const light of scene.lights) children.push(lightMitsuba(light));
   for (const sphere of scene.spheres) {
     children.push(
       el('shape', { type: 'sphere' }, [

@@ -7,6 +7,10 @@
 import { cameraFrame, cameraRay, type Ray } from './camera';
 import { inverseAffine, meshToWorldMatrix } from './mesh/transform';
 import type { Camera, Mesh, Scene, TriangleMesh, Vec3 } from './types';
+import { lightExtent } from '../lights/registry';
+
+/** Radius of the sphere that picks a point or spot light. */
+export const LIGHT_PICK_RADIUS = 0.1;
 
 export type ObjectKind = 'sphere' | 'light' | 'mesh';
 
@@ -57,7 +61,11 @@ export function pickObject(scene: Scene, ray: Ray, meshes?: MeshLookup): ObjectH
     if (t !== null && (best === null || t < best.t)) best = { kind, index, t, point: along(ray, t) };
   };
   scene.spheres.forEach((s, i) => consider('sphere', i, s.center, s.radius));
-  scene.lights.forEach((l, i) => consider('light', i, l.position, l.radius));
+  // A light is picked by the sphere around it (points and spots: a small one; directional lights are nowhere).
+  scene.lights.forEach((l, i) => {
+    const extent = lightExtent(l);
+    if (extent) consider('light', i, extent.center, Math.max(extent.radius, LIGHT_PICK_RADIUS));
+  });
   scene.meshes.forEach((mesh, i) => {
     const data = meshes?.(mesh.file);
     const t = data ? intersectMesh(ray, mesh, data) : null;

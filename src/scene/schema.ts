@@ -9,14 +9,16 @@
  */
 import * as z from 'zod';
 import {
-  allowedOnGround, defaultMaterial, materialTextures, MATERIAL_KEYS, materialSchema, normalizeMaterial, SOLID_DESCRIPTIONS, UNKNOWN_TYPE_MESSAGE,
+  allowedOnGround, defaultMaterial, KINDS, materialTextures, MATERIAL_KEYS, materialSchema, normalizeMaterial, SOLID_DESCRIPTIONS, UNKNOWN_TYPE_MESSAGE,
 } from '../materials/registry';
+import { LIGHT_KEYS, lightSchema, normalizeLight, UNKNOWN_LIGHT_TYPE_MESSAGE } from '../lights/registry';
 import { MAX_BOUNCES, MAX_IMAGE_SIZE, MAX_LIGHTS, MAX_MESHES, MAX_SCENE_BYTES, MAX_SPHERES } from './limits';
 import {
   color, coordinate, emissionShape, integer, intensity, length, MAX_COORDINATE, MAX_INTENSITY, point, shapeError, white,
 } from './schemaParts';
 import type { Camera, Environment, Ground, Light, Material, Mesh, Scene, Sphere, Vec3 } from './types';
 import { versionIssues } from './version';
+import { TEXTURE_KEYS, UV_KEYS } from './texture/texture';
 import { SceneError, type SafeParseResult, type SceneIssue } from './issues';
 
 export { MAX_COORDINATE, MAX_INTENSITY };
@@ -118,15 +120,11 @@ const groundMaterial = material.refine(allowedOnGround, {
   message: `must not be ${SOLID_DESCRIPTIONS.join(' or ')} on the ground (a plane has no inside)`,
 }).refine((m) => m.emission === undefined, { path: ['emission'], message: 'is not allowed on the ground' });
 const groundShape = { height: coordinate().default(0), material: groundMaterial };
-const lightShape = {
-  position: point(),
-  radius: length(),
-  color: color(intensity).default(white),
-  intensity: intensity().default(1),
-};
+/** A light by its `type` (absent = the sphere light of version 1), through the light kinds' registry. */
+const light = oneOf<Light>((value) => (lightSchema(value.type) as z.ZodType<Light> | undefined) ?? UNKNOWN_LIGHT_TYPE_MESSAGE);
 /** Spheres have no texture coordinates (the format's rule), so no textures. */
 const sphereMaterial = material.superRefine((m, ctx) => {
-  for (const t of materialTextures(m)) ctx.addIssue({ code: 'custom', path: [t.key], message: 'cannot be a texture on a sphere (spheres have no texture coordinates)' });
+  for (const t of materialTextures(m)) ctx.addIssue({ code: 'custom', path: t.path, message: 'cannot be a texture on a sphere (spheres have no texture coordinates)' });
 });
 const sphereShape = { center: point(), radius: length(), material: sphereMaterial };
 const positiveScale = () => z.number().gt(0).max(MAX_COORDINATE);
@@ -153,7 +151,7 @@ const sceneShape = {
   render: z.strictObject(renderShape).default(() => ({ maxBounces: 6 })),
   environment: environment.nullable().default(null),
   ground: z.strictObject(groundShape).nullable().default(null),
-  lights: list(z.strictObject(lightShape), MAX_LIGHTS, 'lights'),
+  lights: list(light, MAX_LIGHTS, 'lights'),
   spheres: list(z.strictObject(sphereShape), MAX_SPHERES, 'spheres'),
   meshes: list(z.strictObject(meshShape), MAX_MESHES, 'meshes'),
 };
@@ -172,14 +170,28 @@ const KNOWN_KEYS: Record<string, readonly string[]> = {
   ground: Object.keys(groundShape),
   'ground.material': materialKeys,
   'ground.material.emission': Object.keys(emissionShape),
-  'lights[]': Object.keys(lightShape),
+  'lights[]': LIGHT_KEYS,
   'spheres[]': Object.keys(sphereShape),
   'spheres[].material': materialKeys,
   'spheres[].material.emission': Object.keys(emissionShape),
   'meshes[]': Object.keys(meshShape),
   'meshes[].material': materialKeys,
   'meshes[].material.emission': Object.keys(emissionShape),
+  ...textureKnownKeys(['ground.material', 'spheres[].material', 'meshes[].material']),
 };
+
+/** The keys of a texture object (and its `uv`) at every material input that may be one. */
+function textureKnownKeys(materials: readonly string[]): Record<string, readonly string[]> {
+  const inputs = KINDS.flatMap((k) => [
+    ...(k.textures ?? []).map((t) => [t.key, t.input] as const),
+    ...(k.opacity ? [['opacity', 'scalar'] as const] : []),
+    ...(k.normalMap ? [['normalMap', 'normal'] as const] : []),
+    ...(k.texturedEmission ? [['emission.color', 'color'] as const] : []),
+  ]);
+  return Object.fromEntries(
+    materials.flatMap((m) => inputs.flatMap(([key, input]) => [[`${m}.${key}`, TEXTURE_KEYS[input]], [`${m}.${key}.uv`, UV_KEYS]])),
+  );
+}
 
 function distance(a: Vec3, b: Vec3): number {
   return Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
@@ -442,12 +454,7 @@ const copyMesh = (m: z.output<z.ZodObject<typeof meshShape>>): Mesh => ({
   rotation: vec(m.rotation),
   scale: typeof m.scale === 'number' ? [m.scale, m.scale, m.scale] : vec(m.scale),
 });
-const copyLight = (l: Light): Light => ({
-  position: vec(l.position),
-  radius: l.radius,
-  color: vec(l.color),
-  intensity: num(l.intensity),
-});
+const copyLight = (l: Light): Light => normalizeLight(l as unknown as Record<string, unknown>);
 const copySphere = (s: Sphere): Sphere => ({ center: vec(s.center), radius: s.radius, material: copyMaterial(s.material) });
 const vec = (v: Vec3): Vec3 => [num(v[0]), num(v[1]), num(v[2])];
 const num = (x: number) => (x === 0 ? 0 : x);

@@ -6,6 +6,7 @@
  * the earliest version that holds it (version 1: no material `type`, no
  * `meshes`), so it reads the same in older readers.
  */
+import { lightJson } from '../lights/registry';
 import { materialJson } from '../materials/registry';
 import type { SceneJson } from './schema';
 import type { Camera, Environment, Material, Mesh, Scene, Vec3 } from './types';
@@ -25,12 +26,7 @@ export function serializeScene(scene: Scene): SceneJson {
     render: { maxBounces: scene.render.maxBounces },
     ...(environment ? { environment: environmentJson(environment) } : {}),
     ...(ground ? { ground: { height: ground.height, material: material(ground.material) } } : {}),
-    lights: scene.lights.map((light) => ({
-      position: vec(light.position),
-      radius: light.radius,
-      color: vec(light.color),
-      intensity: light.intensity,
-    })),
+    lights: scene.lights.map((light) => lightJson(light, version)) as SceneJson['lights'],
     spheres: scene.spheres.map((sphere) => ({
       center: vec(sphere.center),
       radius: sphere.radius,

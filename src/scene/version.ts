@@ -6,6 +6,7 @@
  * normalized scene needs. Material kinds say which version brought them
  * (src/materials/<kind>/kind.ts).
  */
+import { lightVersion } from '../lights/registry';
 import { materialVersion, typeVersion } from '../materials/registry';
 import type { SceneIssue } from './issues';
 import type { Scene } from './types';
@@ -28,6 +29,10 @@ export function versionIssues(input: unknown): SceneIssue[] {
     for (const key of V2_MATERIAL_KEYS) if (key in material) require(key === 'type' ? Math.max(2, typeVersion(material.type) ?? 2) : 2, `${path}.${key}`);
   };
   if ('meshes' in input) require(2, 'meshes');
+  // A light's `type` (every kind but the sphere) came with version 3.
+  if (Array.isArray(input.lights)) {
+    input.lights.slice(0, 1000).forEach((light, i) => isRecord(light) && 'type' in light && require(3, `lights[${i}].type`));
+  }
   const environment = input.environment;
   if (isRecord(environment)) {
     for (const key of ['map', 'rotation']) if (key in environment) require(2, `environment.${key}`);
@@ -46,7 +51,8 @@ export function versionIssues(input: unknown): SceneIssue[] {
 export function requiredVersion(scene: Scene): 1 | 2 | 3 {
   const materials = [...scene.spheres, ...scene.meshes, ...(scene.ground ? [scene.ground] : [])].map((o) => materialVersion(o.material));
   const v2Geometry = scene.meshes.length > 0 || (scene.environment !== null && 'map' in scene.environment);
-  return Math.max(1, v2Geometry ? 2 : 1, ...materials) as 1 | 2 | 3;
+  const lights = scene.lights.map(lightVersion);
+  return Math.max(1, v2Geometry ? 2 : 1, ...materials, ...lights) as 1 | 2 | 3;
 }
 
 function isRecord(value: unknown): value is Record<string, unknown> {

@@ -67,7 +67,7 @@ bool scatters(Hit hit, Material material) { return hit.kind != HIT_NONE && bsdfS
 // Dirac delta).
 vec3 emitted(Hit hit, Material material, vec3 direction, vec3 previousPosition, bool previousDelta, float previousPdf) {
   float weight = previousDelta ? 1.0 : powerHeuristic(previousPdf, lightPdf(previousPosition, direction, hit));
-  vec3 surface = dot(direction, hit.normal) < 0.0 ? materialEmission(material) : vec3(0.0);
+  vec3 surface = dot(direction, hit.normal) < 0.0 ? surfaceEmission(material, hit.uv) : vec3(0.0);
   return (hit.kind == HIT_NONE ? escapedRadiance(direction) : surface) * weight;
 }
 
@@ -83,7 +83,9 @@ vec3 sampleDirectLight(Hit hit, mat3 frame, vec3 wo, Bsdf bsdf, ShadingNormal sh
   bsdfPdf = guidedPdf(bsdfPdf, light.direction);  // BSDF sampling is mixed with the caustic guides
   vec3 origin = spawnRayOrigin(hit, light.direction);
   float transmitted = shadowTransmittance(origin, light.direction, light.distance, light.skipSphere);
-  return f * light.radiance * (transmitted * powerHeuristic(light.pdf, bsdfPdf) / light.pdf);
+  // A Dirac delta light is found by this technique alone: no MIS.
+  float weight = light.delta ? 1.0 : powerHeuristic(light.pdf, bsdfPdf);
+  return f * light.radiance * (transmitted * weight / light.pdf);
 }
 
 // The rest of a path whose camera ray hit `hit` (see scatters), given the

@@ -123,7 +123,7 @@ describe('environment maps on the page', () => {
 
     // The link cannot carry it: the share notice says so.
     await page.click('#share');
-    await expect.poll(() => page.getByTestId('notice').textContent()).toMatch(/your map "gradient.hdr", which a link cannot carry/);
+    await expect.poll(() => page.getByTestId('notice').textContent()).toMatch(/your file "gradient.hdr", which a link cannot carry/);
 
     // A truncated map: rejected naming environment.map; the scene and the samples stay.
     await waitForSpp(page, (await spp(page)) + 2);

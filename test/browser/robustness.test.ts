@@ -61,6 +61,22 @@ function withMaterial(roughness: number): Json {
 }
 
 const NASTY: [string, Json][] = [
+  // Version 3 lights at their edge cases: a rectangle lying in the ground
+  // plane (every ground point on its plane), one whose edge touches a
+  // sphere, a spot of cutoff 90 with no transition, one whose target is a
+  // hair away, a directional light travelling up (away from the ground), a
+  // point light on a sphere's surface, huge and tiny planar lights.
+  ['v3 lights at their edge cases', { ...base(), version: 3, lights: [
+    { type: 'rectangle', position: [0.5, 0, 0.5], size: [1, 1], intensity: 5 },
+    { type: 'rectangle', position: [0, 1.0, 0], rotation: [90, 0, 0], size: [0.5, 1e-3], intensity: 5 },
+    { type: 'disk', position: [0, 3, 0], radius: 1e5, intensity: 0.01 },
+    { type: 'disk', position: [-1, 2, 1], radius: 1e-4, intensity: 1e6 },
+    { type: 'spot', position: [0, 2, 0], target: [0, 0, 0], cutoffAngle: 90, beamWidth: 90, intensity: 5 },
+    { type: 'spot', position: [1, 2, 0], target: [1, 2 - 1e-5, 0], cutoffAngle: 1e-3, beamWidth: 0, intensity: 5 },
+    { type: 'directional', direction: [0, 1, 0], irradiance: 3 },
+    { type: 'directional', direction: [1e-5, -1, 0], irradiance: 1 },
+    { type: 'point', position: [0, 1, 0], intensity: 2 },
+  ] }],
   ['overlapping spheres', { ...base(), spheres: [
     { center: [0, 0.5, 0], radius: 0.6, material: { roughness: 1 } },
     { center: [0.3, 0.6, 0.1], radius: 0.6, material: { roughness: 0 } },

@@ -209,7 +209,7 @@ describe('queries through an instance', async () => {
     const edited: Scene = {
       ...plain,
       spheres: [{ center: [0, 2, 0], radius: 0.5, material: white }],
-      lights: [{ position: [0, 3, 0], radius: 0.2, color: [1, 1, 1], intensity: 5 }],
+      lights: [{ type: 'sphere', position: [0, 3, 0], radius: 0.2, color: [1, 1, 1], intensity: 5 }],
       ground: plain.ground ? null : { height: -1, material: white },
       meshes: meshes.map((m, i) => ({ ...m, material: { type: 'standard', color: [0.2 * i, 0.5, 0.5], roughness: 0.3 } })),
     };

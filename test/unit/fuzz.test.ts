@@ -9,6 +9,7 @@ import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
+import { lightKindOf } from '../../src/lights/registry';
 import {
   MAX_BOUNCES,
   MAX_IMAGE_SIZE,
@@ -127,9 +128,14 @@ function checkScene(scene: Scene): void {
   }
   check(scene.lights.length <= MAX_LIGHTS, 'at most MAX_LIGHTS lights');
   scene.lights.forEach((light, i) => {
-    keys(light, ['position', 'radius', 'color', 'intensity'], `lights[${i}]`);
-    check(vec(light.position, inBox) && vec(light.color, (x) => x >= 0), `lights[${i}] position and color`);
-    check(light.radius > 0 && light.radius <= 1e6 && light.intensity >= 0 && finite(light.intensity), `lights[${i}] radius and intensity`);
+    // Every key of its kind, explicit (beamWidth too: normalizing fills it in).
+    keys(light, ['type', ...Object.keys(lightKindOf(light).shape)], `lights[${i}]`);
+    const l = light as unknown as Record<string, number & Vec3>;
+    check(vec(light.color, (x) => x >= 0) && (!('position' in l) || vec(l.position, inBox)), `lights[${i}] position and color`);
+    check(!('radius' in l) || (l.radius > 0 && l.radius <= 1e6), `lights[${i}] radius`);
+    for (const key of ['intensity', 'irradiance']) check(!(key in l) || (l[key] >= 0 && finite(l[key])), `lights[${i}].${key}`);
+    if (light.type === 'spot') check(light.beamWidth >= 0 && light.beamWidth <= light.cutoffAngle && light.cutoffAngle <= 90, `lights[${i}] spot angles`);
+    if (light.type === 'rectangle') check(light.size.every((x) => x > 0), `lights[${i}].size`);
   });
   check(scene.spheres.length <= MAX_SPHERES, 'at most MAX_SPHERES spheres');
   scene.spheres.forEach((sphere, i) => {
@@ -297,6 +303,34 @@ const validScene = fc.record(
   { requiredKeys: ['camera'] },
 );
 
+/** Version 3: a textured principled ground (every texture key, each optional). */
+const angle = fc.double({ min: -1e6, max: 1e6, noNaN: true });
+const uvTransform = fc.record({ offset: fc.tuple(angle, angle), scale: fc.tuple(angle, angle), rotation: angle }, { requiredKeys: [] });
+const imageName = fc.constantFrom('a.png', 'dir/b.jpg', 'c d.webp', 'e.exr');
+const scalarTexture = fc.record(
+  { image: imageName, channel: fc.constantFrom('r', 'g', 'b', 'a'), scale: fc.double({ min: 0, max: 1e6, noNaN: true }), uv: uvTransform, cutoff: unit },
+  { requiredKeys: ['image'] },
+);
+const colorTexture = fc.record({ image: imageName, scale: fc.oneof(fc.double({ min: 0, max: 1e6, noNaN: true }), fc.tuple(unit, unit, unit)), uv: uvTransform }, { requiredKeys: ['image'] });
+const texturedGround = fc.record({
+  version: fc.constant(3),
+  camera: fc.constant({ position: [0, 1, 5], target: [0, 0, 0] }),
+  ground: fc.record({
+    material: fc.record(
+      {
+        type: fc.constant('principled'),
+        baseColor: fc.oneof(albedo, colorTexture),
+        metallic: fc.oneof(unit, scalarTexture),
+        roughness: fc.oneof(unit, scalarTexture),
+        clearcoat: fc.oneof(unit, scalarTexture),
+        opacity: fc.oneof(unit, scalarTexture),
+        normalMap: fc.record({ image: imageName, scale: angle, uv: uvTransform }, { requiredKeys: ['image'] }),
+      },
+      { requiredKeys: ['type'] },
+    ),
+  }),
+});
+
 // ---------------------------------------------------------------- properties
 
 describe('fuzzing parseScene', () => {
@@ -310,6 +344,18 @@ describe('fuzzing parseScene', () => {
         expect(parseSceneText(JSON.stringify(serializeScene(result.scene))), 'serialize, stringify, parse text changed the scene').toStrictEqual(result.scene);
       }),
       { numRuns: 1000 },
+    );
+  });
+
+  it('accepts and round-trips generated textured scenes (version 3)', () => {
+    fc.assert(
+      fc.property(texturedGround, (json) => {
+        const result = safeParseScene(json);
+        if (!result.ok) throw new Error(`rejected a valid scene: ${JSON.stringify(result.issues)}`);
+        checkScene(result.scene);
+        expect(parseScene(serializeScene(result.scene))).toStrictEqual(result.scene);
+      }),
+      { numRuns: 300 },
     );
   });
 

@@ -73,7 +73,7 @@ function scene(overrides: Partial<Scene> = {}): Scene {
     render: { maxBounces: 6 },
     environment: { color: [0.5, 0.25, 1], intensity: 2 },
     ground: { height: -0.5, material: { type: 'standard', color: [0.6, 0.6, 0.6], roughness: 1 } },
-    lights: [{ position: [1, 4, 2], radius: 0.5, color: [1, 0.5, 0.25], intensity: 8 }],
+    lights: [{ type: 'sphere', position: [1, 4, 2], radius: 0.5, color: [1, 0.5, 0.25], intensity: 8 }],
     meshes: [],
     spheres: [
       { center: [-1, 0, 0], radius: 0.5, material: { type: 'standard', color: [0.9, 0.6, 0.3], roughness: 0 } },

@@ -223,7 +223,7 @@ describe('selectCausticGuides', () => {
     const s = parseScene({ camera, ...json });
     return [
       ...s.spheres.map((x) => ({ center: x.center, radius: x.radius, material: x.material, radiance: x.material.emission ? [1, 1, 1] as [number, number, number] : [0, 0, 0] as [number, number, number] })),
-      ...s.lights.map((l) => ({ center: l.position, radius: l.radius, material: 'emitterOnly' as const, radiance: l.color.map((c) => c * l.intensity) as [number, number, number] })),
+      ...s.lights.map((l) => l.type === 'sphere' ? { center: l.position, radius: l.radius, material: 'emitterOnly' as const, radiance: l.color.map((c) => c * l.intensity) as [number, number, number] } : null!),
     ];
   };
 

@@ -10,7 +10,7 @@ import {
   projectSphere,
 } from '../../src/scene/picking';
 import { defaultScene } from '../../src/scene/presets';
-import type { Scene } from '../../src/scene/types';
+import type { Scene, Vec3 } from '../../src/scene/types';
 
 const aspect = 256 / 192;
 
@@ -39,7 +39,7 @@ describe('picking the default scene', () => {
       const p = projectPoint(scene.camera, aspect, sphere.center)!;
       expect(pickAt(scene, aspect, p.u, p.v)).toMatchObject({ kind: 'sphere', index });
     });
-    const light = projectPoint(scene.camera, aspect, scene.lights[0].position)!;
+    const light = projectPoint(scene.camera, aspect, (scene.lights[0] as { position: Vec3 }).position)!;
     expect(pickAt(scene, aspect, light.u, light.v)).toMatchObject({ kind: 'light', index: 0 });
   });
 

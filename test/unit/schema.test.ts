@@ -55,8 +55,12 @@ function thrown(run: () => unknown): SceneError {
 }
 
 describe('valid scenes', () => {
-  it('finds the fifteen fixtures', () => {
-    expect(fixtureNames.sort()).toEqual(['bunny', 'conductor', 'emissive', 'emissive-mesh', 'emissive-tilted-normals', 'envmap', 'furnace', 'glass', 'glossy', 'instanced', 'mirrors', 'principled', 'seed', 'small-light', 'textured']);
+  it('finds the twenty-one fixtures', () => {
+    expect(fixtureNames.sort()).toEqual([
+      'bunny', 'conductor', 'emissive', 'emissive-mesh', 'emissive-tilted-normals', 'envmap', 'furnace', 'glass', 'glossy', 'instanced',
+      'light-directional', 'light-disk', 'light-point', 'light-rectangle', 'light-spot', 'lights', 'mirrors', 'principled', 'seed', 'small-light',
+      'textured',
+    ]);
   });
 
   it.each(fixtureNames)('parses %s, keeping its values', (name) => {
@@ -123,7 +127,7 @@ describe('valid scenes', () => {
     const defaultMaterial = { type: 'standard', color: [0.8, 0.8, 0.8], roughness: 1 };
     expect(scene.environment).toStrictEqual({ color: [1, 1, 1], intensity: 1 });
     expect(scene.ground).toStrictEqual({ height: 0, material: defaultMaterial });
-    expect(scene.lights).toStrictEqual([{ position: [0, 5, 0], radius: 0.5, color: [1, 1, 1], intensity: 1 }]);
+    expect(scene.lights).toStrictEqual([{ type: 'sphere', position: [0, 5, 0], radius: 0.5, color: [1, 1, 1], intensity: 1 }]);
     expect(scene.spheres.map((s) => s.material)).toStrictEqual([
       defaultMaterial,
       defaultMaterial,
@@ -217,7 +221,7 @@ describe('valid scenes', () => {
 
 describe('presets', () => {
   it('are copies of the fixture scenes (all but those that need map or mesh files)', () => {
-    expect([...PRESET_NAMES].sort()).toEqual(fixtureNames.filter((name) => !['bunny', 'conductor', 'envmap', 'emissive-mesh', 'emissive-tilted-normals', 'instanced', 'principled', 'textured'].includes(name)).sort());
+    expect([...PRESET_NAMES].sort()).toEqual(fixtureNames.filter((name) => !(['bunny', 'conductor', 'envmap', 'emissive-mesh', 'emissive-tilted-normals', 'instanced', 'lights', 'principled', 'textured'].includes(name) || name.startsWith('light-'))).sort());
     for (const name of PRESET_NAMES) expect(PRESETS[name]).toEqual(fixture(name));
   });
 

@@ -8,10 +8,11 @@
  */
 import { MAX_LIGHTS, MAX_MESHES, MAX_SPHERES } from '../../scene/limits';
 import { MATERIAL_TEXELS } from '../../materials/registry';
+import { EMITTER_KINDS, emitterLayout, lightDefines, PLANAR_LIGHT } from '../../lights/registry';
 import { defineRecord, recordDefines, recordGlsl, type RecordLayout } from './records';
 
-/** Emitter kinds (Emitter.kind in GLSL). */
-export const EMITTER_KINDS = { sphere: 0, environment: 1, mesh: 2 } as const;
+/** Emitter kinds (Emitter.kind in GLSL): src/lights/registry.ts. */
+export { EMITTER_KINDS, PLANAR_LIGHT };
 
 /**
  * A row of the material table: its layout is the material kind's
@@ -35,20 +36,14 @@ export const SPHERE = defineRecord('SphereRecord', [
 
 /**
  * An entry of the light-sampling table; `pdf` is the probability of picking
- * it. Spheres: centre and radius, `primitive` the sphere. Meshes: `primitive`
- * the mesh, its emissive triangles the slots `first` .. `first + count - 1`
- * of the emissive-triangle texture (lights/mesh_emitter.glsl).
+ * it. Its layout is its kind's (src/lights/registry.ts, which generates the
+ * GLSL): a header (radiance, pdf, kind, primitive, first, count), then the
+ * kind's fields; this is a sphere's (centre and radius; `primitive` the
+ * sphere). Meshes: `primitive` the mesh, its emissive triangles the slots
+ * `first` .. `first + count - 1` of the emissive-triangle texture
+ * (lights/mesh_emitter.glsl); area lights: `primitive` the planar-light slot.
  */
-export const EMITTER = defineRecord('Emitter', [
-  ['center', 'vec3'],
-  ['radius', 'float'],
-  ['radiance', 'vec3'],
-  ['pdf', 'float'],
-  ['kind', 'int'],
-  ['primitive', 'int'],
-  ['first', 'int'],
-  ['count', 'int'],
-]);
+export const EMITTER = emitterLayout();
 
 /**
  * A mesh: `areaPdf` is the density, per unit area, with which light sampling
@@ -95,6 +90,8 @@ export const HEADER = defineRecord('Header', [
   ['guideCount', 'int'],
   ['groundHeight', 'float'],
   ['groundMaterial', 'int'],
+  /** Rectangle and disk lights (the planar-light table). */
+  ['planarLightCount', 'int'],
   ['environment', 'vec3'],
   /** Probability that light sampling picks the environment map (0: none). */
   ['environmentPdf', 'float'],
@@ -139,6 +136,7 @@ const TABLES = [
   ['emitterChoices', MAX_EMITTERS * EMITTER_CHOICE.texels],
   ['meshes', MAX_MESHES * MESH.texels],
   ['textures', MAX_TEXTURES * TEXTURE.texels],
+  ['planarLights', MAX_LIGHTS * PLANAR_LIGHT.texels],
 ] as const;
 type Table = (typeof TABLES)[number][0];
 /** First texel of each table in the data texture. */
@@ -165,24 +163,22 @@ export const DATA_TEXELS = DATA_ROWS * SCENE_ROW_TEXELS;
 /** vec4s of the uniform block: the header, then the guides. */
 export const BLOCK_VEC4S = HEADER.texels + MAX_GUIDES * GUIDE_VEC4S;
 
-const tagDefines = (prefix: string, tags: Record<string, number>) =>
-  Object.fromEntries(Object.entries(tags).map(([name, value]) => [`${prefix}_${name.replace(/([a-z])([A-Z])/g, '$1_$2').toUpperCase()}`, value]));
-
 export function sceneLayoutDefines(): Record<string, number> {
   return {
     ...recordDefines(SPHERE),
-    ...recordDefines(EMITTER),
+    ...lightDefines(),
+    ...recordDefines(PLANAR_LIGHT),
     ...recordDefines(EMITTER_CHOICE),
     ...recordDefines(MESH),
     ...recordDefines(TEXTURE),
     ...recordDefines(INSTANCE),
-    ...tagDefines('EMITTER', EMITTER_KINDS),
     SPHERE_GEOMETRY_FIRST: SECTIONS.sphereGeometry,
     MATERIALS_FIRST: SECTIONS.materials,
     SPHERES_FIRST: SECTIONS.spheres,
     EMITTERS_FIRST: SECTIONS.emitters,
     EMITTER_CHOICES_FIRST: SECTIONS.emitterChoices,
     MESHES_FIRST: SECTIONS.meshes,
+    PLANAR_LIGHTS_FIRST: SECTIONS.planarLights,
     TEXTURES_FIRST: SECTIONS.textures,
     SCENE_ROW_TEXELS,
     SCENE_ROW_BITS,
@@ -198,7 +194,7 @@ export function sceneLayoutDefines(): Record<string, number> {
 
 /** The generated GLSL: a struct and a loader per record (see records.ts). */
 export function sceneLayoutGlsl(): string {
-  const tables: RecordLayout[] = [SPHERE, EMITTER, EMITTER_CHOICE, MESH, TEXTURE];
+  const tables: RecordLayout[] = [SPHERE, EMITTER_CHOICE, MESH, TEXTURE];
   return [
     '// Generated from src/render/layout/scene.ts: do not edit.',
     ...tables.map((layout) => recordGlsl(layout, 'sceneData')),

@@ -1,19 +1,11 @@
-// The light interface: every emitter (the `lights`, emissive spheres, the
-// environment map) sits in one table and is picked in proportion to its
-// power (an alias table, src/render/aliasTable.ts). The integrator calls
+// The light interface: every emitter (the `lights` of every kind,
+// src/lights/; emissive spheres, the environment map, emissive meshes)
+// sits in one table and is picked in proportion to its power (an alias
+// table, src/render/aliasTable.ts). The integrator calls
 // sampleLight and lightPdf and never knows which kind of emitter it holds.
-
-struct LightSample {
-  vec3 direction;   // world, unit, from x towards the emitter
-  float distance;   // to the emitter along `direction`
-  vec3 radiance;    // emitted towards x
-  float pdf;        // solid angle at x, emitter choice included; 0 = no sample
-  int skipSphere;   // the sphere the shadow ray ends on (-1: none)
-};
 
 // u: .xy the point on the emitter, .z the choice of emitter.
 LightSample sampleLight(vec3 x, vec3 u) {
-  LightSample s;
   int count = emitterCount();
   float scaled = u.z * float(count);
   int slot = clamp(int(scaled), 0, max(count - 1, 0));
@@ -21,13 +13,11 @@ LightSample sampleLight(vec3 x, vec3 u) {
   float f = scaled - float(slot);
   bool keep = f < choice.aliasThreshold;
   Emitter e = loadEmitter(keep ? slot : choice.alias);
-  float pdf;
-  s.direction = sampleSphereEmitter(x, vec4(e.center, e.radius), u.xy, pdf, s.distance);
-  s.radiance = e.radiance;
-  s.skipSphere = e.primitive;
+  // The sphere is the default kind (every program has it); the others override its sample.
+  LightSample s = sphereLightSample(e, x, u.xy);
 #if HAS_ENV_MAP
   if (e.kind == EMITTER_ENVIRONMENT) {
-    s.direction = sampleEnvironment(u.xy, pdf);
+    s.direction = sampleEnvironment(u.xy, s.pdf);
     s.distance = INFINITY;
     s.radiance = environmentRadiance(s.direction);
     s.skipSphere = -1;
@@ -37,13 +27,14 @@ LightSample sampleLight(vec3 x, vec3 u) {
   if (e.kind == EMITTER_MESH) {
     // What is left of u.z after the alias draw, uniform again, picks the triangle.
     float rest = keep ? f / choice.aliasThreshold : (f - choice.aliasThreshold) / max(1.0 - choice.aliasThreshold, 1e-30);
-    s.direction = sampleMeshEmitter(x, e, vec3(u.xy, min(rest, 0.99999994)), pdf, s.distance, s.radiance);
+    s.direction = sampleMeshEmitter(x, e, vec3(u.xy, min(rest, 0.99999994)), s.pdf, s.distance, s.radiance);
     // The shadow ray stops short of the triangle it aims at.
     s.distance *= 0.9999;
     s.skipSphere = -1;
   }
 #endif
-  s.pdf = count > 0 ? e.pdf * pdf : 0.0;
+  sampleLightKind(e, x, u.xy, s);
+  s.pdf = count > 0 ? e.pdf * s.pdf : 0.0;
   return s;
 }
 
@@ -56,6 +47,9 @@ float lightPdf(vec3 x, vec3 direction, Hit hit) {
 #endif
 #if HAS_EMISSIVE_MESHES
   pdf = hit.kind == HIT_TRIANGLE ? meshEmitterPdf(direction, hit) : pdf;
+#endif
+#if HAS_PLANAR_LIGHTS
+  pdf = hit.kind == HIT_PLANAR ? planarLightPdf(x, direction, hit) : pdf;
 #endif
   return pdf;
 }

@@ -7,6 +7,7 @@ float groundHeight() { return readHeader(0).groundHeight; }
 int groundMaterial() { return readHeader(0).groundMaterial; }
 vec3 constantEnvironment() { return readHeader(0).environment; }
 float environmentEmitterPdf() { return readHeader(0).environmentPdf; }
+int planarLightCount() { return readHeader(0).planarLightCount; }
 
 int sphereTexel(int i, int field) { return SPHERES_FIRST + i * SPHERE_RECORD_TEXELS + field; }
 // center.xyz, radius; in row 0 (layout/scene.ts), so the row is a constant.
@@ -16,3 +17,4 @@ Material loadMaterial(int i) { return readMaterial(MATERIALS_FIRST + i * MATERIA
 Emitter loadEmitter(int i) { return readEmitter(EMITTERS_FIRST + i * EMITTER_TEXELS); }
 EmitterChoice loadEmitterChoice(int i) { return readEmitterChoice(EMITTER_CHOICES_FIRST + i * EMITTER_CHOICE_TEXELS); }
 MeshRecord loadMesh(int i) { return readMeshRecord(MESHES_FIRST + i * MESH_RECORD_TEXELS); }
+PlanarLight loadPlanarLight(int i) { return readPlanarLight(PLANAR_LIGHTS_FIRST + i * PLANAR_LIGHT_TEXELS); }

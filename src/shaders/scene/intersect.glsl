@@ -1,5 +1,6 @@
 // Closest-hit and any-hit queries over every shape of the scene (spheres,
-// whose records include the `lights`; the ground plane; the triangles of
+// whose records include the sphere lights; the rectangle and disk lights
+// of the planar-light table; the ground plane; the triangles of
 // meshes through the BVH of scene/bvh.glsl, instanced or not:
 // scene/instances.glsl). A Hit does not depend on the kind of shape: the
 // integrator sees a point, normals and a material, and asks the light
@@ -9,6 +10,7 @@ const int HIT_NONE = 0;
 const int HIT_SPHERE = 1;
 const int HIT_GROUND = 2;
 const int HIT_TRIANGLE = 3;
+const int HIT_PLANAR = 4;
 
 struct Hit {
   float t;
@@ -22,9 +24,9 @@ struct Hit {
                     // cross(normal, xyz) * w points up the image (toward decreasing v);
                     // xyz 0 without texture coordinates
   float scale;      // size of the hit object, for the self-intersection offset
-  vec4 geometry;    // the sphere hit: [center, radius]
+  vec4 geometry;    // the sphere hit: [center, radius]; a planar light: [slot, emitter tag, 0, 0]
   int material;     // index into the material table
-  float emitterPdf; // sphere: probability that light sampling picks it; triangle: the mesh's
+  float emitterPdf; // sphere, planar light: probability that light sampling picks it; triangle: the mesh's
                     // density per unit area (lights/mesh_emitter.glsl); 0: not an emitter
 };
 
@@ -63,6 +65,37 @@ float groundHitT(vec3 origin, vec3 direction) {
   return groundEnabled() ? t : INFINITY;
 }
 
+#if HAS_PLANAR_LIGHTS
+// Nearest t > 0 where the ray meets the planar light's shape, or INFINITY
+// (also for rays parallel to its plane: t is then NaN or infinite, and so
+// is the point, which no inside test accepts). Branch-free (see sphereHitT).
+float planarHitT(vec3 origin, vec3 direction, PlanarLight l) {
+  vec3 n = cross(l.u, l.v);
+  float t = dot(l.center - origin, n) / dot(direction, n);
+  vec3 d = origin + t * direction - l.center;
+  vec2 ab = vec2(dot(d, l.u) / dot(l.u, l.u), dot(d, l.v) / dot(l.v, l.v));
+  t = t > 0.0 && planarLightInside(l.kind, ab) ? t : INFINITY;
+  return t < INFINITY ? t : INFINITY;
+}
+
+// The hit's surface on planar light `i` at distance t: its normal is the
+// side it emits to (emitted() counts emission only against the normal).
+void planarLightHit(inout Hit hit, vec3 origin, vec3 direction, int i, float t) {
+  PlanarLight l = loadPlanarLight(i);
+  hit.t = t;
+  hit.kind = HIT_PLANAR;
+  hit.position = origin + t * direction;
+  hit.normal = normalize(cross(l.u, l.v));
+  hit.geometricNormal = hit.normal;
+  hit.uv = vec2(0.0);
+  hit.tangent = vec4(0.0, 0.0, 0.0, 1.0);
+  hit.scale = 0.0;
+  hit.geometry = vec4(float(i), float(l.kind), 0.0, 0.0);
+  hit.material = l.material;
+  hit.emitterPdf = l.emitterPdf;
+}
+#endif
+
 Hit intersectScene(vec3 origin, vec3 direction) {
   // The loop keeps only the distance and the sphere's index; the rest of
   // the hit is derived once afterwards.
@@ -96,6 +129,17 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   hit.geometricNormal = hit.normal;
   hit.uv = isGround ? groundPosition.xz : vec2(0.0);
   hit.tangent = vec4(isGround ? vec3(1.0, 0.0, 0.0) : vec3(0.0), 1.0);  // the ground: u = x, v = z
+#if HAS_PLANAR_LIGHTS
+  // As for spheres: the loop keeps the nearest distance and slot only.
+  float tPlanar = INFINITY;
+  int planar = 0;
+  for (int i = 0; i < planarLightCount(); i++) {
+    float t = planarHitT(origin, direction, loadPlanarLight(i));
+    planar = t < tPlanar ? i : planar;
+    tPlanar = min(t, tPlanar);
+  }
+  if (tPlanar < hit.t) planarLightHit(hit, origin, direction, planar, tPlanar);
+#endif
 #if HAS_MESHES
   MeshHit triangle;
   if (meshClosestHit(origin, direction, hit.t, triangle)) {
@@ -147,6 +191,9 @@ bool occluded(vec3 origin, vec3 direction, float tMax, int skipSphere) {
     clearance = min(clearance, i == skipSphere ? INFINITY : c);
   }
   bool blocked = clearance < 0.0 || groundHitT(origin, direction) < tMax;
+#if HAS_PLANAR_LIGHTS
+  for (int i = 0; i < planarLightCount(); i++) blocked = blocked || planarHitT(origin, direction, loadPlanarLight(i)) < tMax;
+#endif
 #if HAS_MESHES
   blocked = blocked || meshAnyHit(origin, direction, tMax);
 #endif

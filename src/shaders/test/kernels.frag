@@ -5,6 +5,7 @@ uniform vec4 uMaterial[MATERIAL_TEXELS];  // the packed record of the request's 
 uniform vec3 uWo;
 uniform vec2 uGrid;
 uniform uint uSeed;
+uniform vec4 uRect[3];  // sampleRectangle: the rectangle's centre and half-axes u, v (.xyz)
 
 out vec4 outValue;
 
@@ -24,6 +25,12 @@ void main() {
   Bsdf material = bsdfFromRecord(materialOf(uMaterial));
   if (uKernel == KERNEL_SAMPLECONE) {
     outValue = vec4(sampleUniformCone(rand4().xy, uParams.x), uniformConePdf(uParams.x));
+  } else if (uKernel == KERNEL_SAMPLERECTANGLE) {
+    // From uWo: the sampled point's plane coordinates (a, b) in [-1, 1]^2, the sampler's density and rectanglePdf's for that point.
+    vec3 c = uRect[0].xyz, u = uRect[1].xyz, v = uRect[2].xyz;
+    float pdf;
+    vec3 p = sampleRectangle(uWo, c, u, v, rand4().xy, pdf);
+    outValue = vec4(dot(p - c, u) / dot(u, u), dot(p - c, v) / dot(v, v), pdf, rectanglePdf(uWo, p, c, u, v));
   } else if (uKernel == KERNEL_SAMPLEMATERIAL) {
     BsdfSample s = bsdfSample(material, uWo, rand4().xyz);
     outValue = s.valid ? vec4(s.wi, s.isDelta ? -1.0 : s.pdf) : vec4(0.0);

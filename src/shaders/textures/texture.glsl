@@ -47,6 +47,9 @@ vec4 textureTexels(TextureRecord r, vec2 uv) {
   vec2 st = vec2(dot(r.uRow.xyz, h), dot(r.vRow.xyz, h));
   vec2 size = r.size.xy;
   vec2 pos = st * size - 0.5;  // texel centres at (i + 0.5) / size
+  // A non-finite position (a uv transform overflowing float32) would give NaN
+  // weights: read at -0.5 instead, as the reference does.
+  pos = mix(vec2(-0.5), pos, lessThan(abs(pos), vec2(1e38)));
   vec2 cell = floor(pos);
   vec2 w1 = pos - cell;
   vec2 w0 = 1.0 - w1;

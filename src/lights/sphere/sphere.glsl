@@ -40,3 +40,15 @@ vec3 sampleSphereEmitter(vec3 x, vec4 sphere, vec2 u, out float pdf, out float d
   distance = sqrt(dist2) * cosTheta - sqrt(max(0.0, sphere.w * sphere.w - dist2 * sin2Theta));
   return wi;
 }
+
+// The light interface of a sphere emitter (a sphere light or an emissive
+// sphere; see src/lights/kind.ts): the shadow ray ends on the sphere itself.
+LightSample sphereLightSample(Emitter e, vec3 x, vec2 u) {
+  SphereLight p = sphereLight(e);
+  LightSample s;
+  s.direction = sampleSphereEmitter(x, vec4(p.center, p.radius), u, s.pdf, s.distance);
+  s.radiance = e.radiance;
+  s.skipSphere = e.primitive;
+  s.delta = false;
+  return s;
+}
