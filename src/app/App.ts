@@ -4,7 +4,7 @@
  * (no shader recompile); each finished edit records the scene before it.
  */
 import { PathTracer } from '../render/PathTracer';
-import { NO_ASSETS, type SceneAssets } from '../scene/assets';
+import { mergeAssets, NO_ASSETS, type SceneAssets } from '../scene/assets';
 import { SnapshotKeeper } from '../render/snapshot';
 import { MAX_LIGHTS, MAX_SPHERES } from '../scene/limits';
 import { cameraRay } from '../scene/camera';
@@ -324,13 +324,9 @@ export class App {
     this.changed();
   }
 
-  /** Adds decoded files (maps, models) to those the scenes of this session may use. */
+  /** Adds decoded files (maps, models, texture images) to those the scenes of this session may use. */
   addAssets(assets: SceneAssets): void {
-    if (!assets.maps.size && !assets.meshes.size) return;
-    this.assets = {
-      maps: new Map([...this.assets.maps, ...assets.maps]),
-      meshes: new Map([...this.assets.meshes, ...assets.meshes]),
-    };
+    this.assets = mergeAssets(this.assets, assets);
   }
 
   private upload(): void {

@@ -35,7 +35,11 @@ export function bundledMapName(file: string): string | null {
 /** The file bytes of a bundled map (loads its chunk). */
 export async function bundledMapBytes(name: string): Promise<Uint8Array> {
   const module = await LOADERS[name]();
-  const url = module.default;
+  return dataUrlBytes(module.default);
+}
+
+/** The bytes of a base64 `data:` URL (the page's CSP lets it fetch none). */
+export function dataUrlBytes(url: string): Uint8Array {
   const base64 = url.slice(url.indexOf(',') + 1);
   const text = atob(base64);
   const bytes = new Uint8Array(text.length);

@@ -31,7 +31,7 @@ export class EnvironmentMaps {
     reject: (source: string, issues: SceneIssue[]) => void,
     private readonly applied: () => void = () => {},
   ) {
-    const known = () => (this.fresh ? { maps: new Map(), meshes: app.assets.meshes } : app.assets);
+    const known = () => (this.fresh ? { ...app.assets, maps: new Map() } : app.assets);
     this.loader = new SceneLoader((scene, assets, files) => this.apply(scene, assets, files), reject, known);
   }
 

@@ -20,8 +20,9 @@ import { SceneLoader } from './sceneLoader';
 import { addModelFile, isModelFile, meshExampleFiles } from './meshControls';
 import { EnvironmentMaps, MAP_FILE_PATTERN } from './environmentMaps';
 import { bundledMapName } from './bundledMaps';
-import { MAP_EXAMPLES, MESH_EXAMPLES } from './examples';
+import { MAP_EXAMPLES, MESH_EXAMPLES, TEXTURE_EXAMPLES } from './examples';
 import { Panel } from './panel';
+import { TextureImages } from './textureImages';
 import { LIGHT_TYPE_NAMES, lightLabel, type LightType } from '../lights/registry';
 import { encodePfm } from '../image/pfm';
 import type { RenderStats } from './renderLoop';
@@ -60,7 +61,8 @@ async function start(): Promise<void> {
   performance.mark('renderer-ready');
   const autosave = new Autosave(app, showSaveStatus);
   const maps = new EnvironmentMaps(app, autosave, showIssues, clearError);
-  const panel = new Panel(app, $('panel'), maps);
+  const images = new TextureImages(app, autosave, showError);
+  const panel = new Panel(app, $('panel'), maps, images);
   app.onUploadError = (message) => showError(message);
   wireDenoiser(app);
   const loader = openStartState(app, autosave, startState);
@@ -239,8 +241,9 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader, maps: Envi
     if (event.relatedTarget === null) hint.hidden = true;
   });
   window.addEventListener('drop', (event) => {
-    event.preventDefault();
     hint.hidden = true;
+    if (event.defaultPrevented) return; // taken on its way here (an image dropped on a texture slot)
+    event.preventDefault();
     openFiles(event.dataTransfer?.files);
   });
 
@@ -252,12 +255,16 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader, maps: Envi
     option.textContent = name;
     examples.append(option);
   }
-  for (const name of Object.keys(MESH_EXAMPLES)) examples.append(new Option(name, name));
+  for (const name of [...Object.keys(MESH_EXAMPLES), ...Object.keys(TEXTURE_EXAMPLES)]) examples.append(new Option(name, name));
   examples.addEventListener('change', () => {
     const name = examples.value;
     examples.value = '';
     if (Object.hasOwn(exampleScenes, name)) void loader.open(`The example "${name}"`, () => safeParseScene(exampleScenes[name]));
     if (Object.hasOwn(MESH_EXAMPLES, name)) void meshExampleFiles().then((files) => loader.open(`The example "${name}"`, () => safeParseScene(MESH_EXAMPLES[name]), files));
+    if (Object.hasOwn(TEXTURE_EXAMPLES, name)) {
+      const example = TEXTURE_EXAMPLES[name];
+      void example.files().then((files) => loader.open(`The example "${name}"`, () => safeParseScene(example.scene), files));
+    }
   });
 
   $('save-json').addEventListener('click', () => {

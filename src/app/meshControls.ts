@@ -16,7 +16,7 @@ import { encodePly, MESH_EXTENSIONS } from '../scene/mesh';
 import { decodeMeshOffThread } from './meshDecode';
 import type { Mesh, TriangleMesh, Vec3 } from '../scene/types';
 import type { App } from './App';
-import { addSphereMaterialControls } from './materialControls';
+import { addSphereMaterialControls, type TextureSlots } from './materialControls';
 import { fitMesh, frameCamera, worldBoundingSphere } from './meshFit';
 import { clearError, showError } from './messages';
 import type { CompanionFiles } from './sceneLoader';
@@ -98,14 +98,14 @@ export function storedAs(app: App, i: number): string {
 }
 
 /** The selected mesh's controls: its file, material (as a sphere's) and transform. */
-export function addMeshControls(folder: GUI, app: App, mesh: () => Mesh, tracked: <T extends Controller>(c: T) => T): void {
+export function addMeshControls(folder: GUI, app: App, mesh: () => Mesh, tracked: <T extends Controller>(c: T) => T, slots?: TextureSlots): void {
   folder.add({ file: mesh().file }, 'file').name('file').disable();
   // What the model costs: its triangles, and whether the BVH holds them once for several meshes or a copy for this one.
   const decoded = app.assets.meshes.get(mesh().file);
   const triangles = decoded ? (decoded.indices.length / 3).toLocaleString('en-US') : 'not loaded';
   folder.add({ triangles }, 'triangles').name('triangles').disable();
   folder.add({ stored: storedAs(app, app.scene.meshes.indexOf(mesh())) }, 'stored').name('stored').disable();
-  addSphereMaterialControls(folder, app, mesh, tracked);
+  addSphereMaterialControls(folder, app, mesh, tracked, slots);
   const axis = (label: string, vector: () => Vec3, k: number, range?: [number, number, number]) => {
     const target = {
       get value() { return vector()[k]; },

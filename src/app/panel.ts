@@ -7,15 +7,16 @@ import GUI, { type Controller } from 'lil-gui';
 import { TONEMAPS } from '../render/toneMaps';
 import { hexToLinear, linearToHex } from '../scene/color';
 import { MAX_BOUNCES } from '../scene/limits';
-import { defaultMaterial, mainColorKey } from '../materials/registry';
+import { defaultMaterial, mainColorKey, materialControls } from '../materials/registry';
 import { lightControls } from '../lights/registry';
 import type { LightControl } from '../lights/kind';
-import type { Ground, Material, Vec3 } from '../scene/types';
+import type { Ground, Vec3 } from '../scene/types';
 import type { App } from './App';
-import { addSphereMaterialControls } from './materialControls';
+import { addMaterialInput, addSphereMaterialControls, materialLayoutKey } from './materialControls';
 import { addMeshControls } from './meshControls';
 import { addEnvironmentControls } from './environmentControls';
 import type { EnvironmentMaps } from './environmentMaps';
+import type { TextureImages } from './textureImages';
 
 const DEFAULT_GROUND: Ground = { height: 0, material: defaultMaterial() };
 
@@ -24,11 +25,16 @@ export class Panel {
   private selectionFolder: GUI;
   private selectionKey = '';
   private lastGround: Ground = structuredClone(DEFAULT_GROUND);
+  private groundFolder: GUI | null = null;
+  private groundControls: Controller[] = [];
+  private groundLayout = '';
 
   constructor(
     private readonly app: App,
     container: HTMLElement,
     maps: EnvironmentMaps | null = null,
+    /** The meshes' texture slots (absent: no slots). */
+    private readonly images: TextureImages | null = null,
   ) {
     this.gui = new GUI({ container, title: 'Controls' });
     this.selectionFolder = this.gui.addFolder('Selection');
@@ -44,15 +50,17 @@ export class Panel {
   /** Shows the scene's current values (after undo, load, drags...). */
   refresh(): void {
     if (this.currentSelectionKey() !== this.selectionKey) this.buildSelection();
+    const ground = this.app.scene.ground ?? this.lastGround;
+    if (this.groundFolder && materialLayoutKey(ground.material) !== this.groundLayout) this.buildGroundMaterial(this.groundFolder);
     for (const controller of this.gui.controllersRecursive()) controller.updateDisplay();
   }
 
-  /** What the selection folder was built for: the object and, for a sphere, its material type (type-specific controls). */
+  /** What the selection folder was built for: the object and its material's layout (its type's controls, the inputs that are textures). */
   private currentSelectionKey(): string {
     const s = this.app.selection;
     if (!s) return '';
-    const type = s.kind === 'light' ? '' : (s.kind === 'sphere' ? this.app.scene.spheres : this.app.scene.meshes)[s.index]?.material.type;
-    return `${s.kind}:${s.index}:${type ?? ''}`;
+    const material = s.kind === 'light' ? undefined : (s.kind === 'sphere' ? this.app.scene.spheres : this.app.scene.meshes)[s.index]?.material;
+    return `${s.kind}:${s.index}:${material ? materialLayoutKey(material) : ''}`;
   }
 
   /** Wires a controller's changes into the edit history. */
@@ -73,7 +81,8 @@ export class Panel {
     const light = () => app.scene.lights[s.index];
     const edit = (f: () => void) => app.live(f);
     if (s.kind === 'mesh') {
-      addMeshControls(folder, app, () => app.scene.meshes[s.index], (c) => this.tracked(c));
+      const slots = this.images?.slotsFor((scene) => scene.meshes[s.index]?.material);
+      addMeshControls(folder, app, () => app.scene.meshes[s.index], (c) => this.tracked(c), slots);
     } else if (s.kind === 'sphere') {
       addSphereMaterialControls(folder, app, sphere, (c) => this.tracked(c));
       this.tracked(folder.add({
@@ -112,23 +121,27 @@ export class Panel {
     }
   }
 
-  /** The ground's material: its main color (mainColorKey) and roughness (every kind has them); no emission (the format forbids it there). */
-  private materialControls(folder: GUI, material: () => Material): void {
+  /**
+   * The ground's material: its main color (mainColorKey) and roughness
+   * (every kind has them), as its kind's controls (texture slots included:
+   * the ground has coordinates) under the labels "color" and "roughness";
+   * no emission (the format forbids it there). Rebuilt when the material's
+   * layout changes (its kind, which inputs are textures).
+   */
+  private buildGroundMaterial(folder: GUI): void {
     const app = this.app;
-    const colored = () => {
-      const m = material() as unknown as Record<string, Vec3>;
-      const key = mainColorKey(material());
-      return { get: () => m[key], set: (c: Vec3) => (m[key] = c) };
-    };
-    this.tracked(folder.addColor({
-      get color() { return linearToHex(colored().get()); },
-      set color(v: string) { app.live(() => colored().set(hexToLinear(v))); },
-    }, 'color'));
-    this.tracked(folder.add({
-      // A texture's value shows as its scale; a number set here replaces it.
-      get roughness() { const r = material().roughness; return typeof r === 'number' ? r : (r?.scale as number) ?? 0; },
-      set roughness(v: number) { app.live(() => (material().roughness = v)); },
-    }, 'roughness', 0, 1, 0.01));
+    for (const c of this.groundControls) c.destroy();
+    const owner = () => app.scene.ground ?? this.lastGround;
+    const material = owner().material;
+    this.groundLayout = materialLayoutKey(material);
+    const slots = this.images?.slotsFor((scene) => scene.ground?.material);
+    const controls = materialControls(material);
+    const inputs: [string, string][] = [[mainColorKey(material), 'color'], ['roughness', 'roughness']];
+    this.groundControls = inputs.flatMap(([key, label]) => {
+      const control = controls.find((c) => c.key === key);
+      const controller = control && addMaterialInput(folder, app, { ...control, label }, owner, (c) => this.tracked(c), slots);
+      return controller ? [controller] : [];
+    });
   }
 
   private buildGround(): void {
@@ -149,7 +162,8 @@ export class Panel {
       get height() { return app.scene.ground?.height ?? panel.lastGround.height; },
       set height(v: number) { app.live(() => (ground().height = v)); },
     }, 'height', -5, 5, 0.01));
-    this.materialControls(folder, () => app.scene.ground?.material ?? panel.lastGround.material);
+    this.groundFolder = folder;
+    this.buildGroundMaterial(folder);
     folder.close();
   }
 

@@ -9,7 +9,7 @@
  * saved again with it). Reloading the same link keeps the edits made since.
  * A saved state that cannot be trusted is discarded with a notice.
  */
-import { assetReferences, NO_ASSETS, type SceneAssets } from '../scene/assets';
+import { assetReferences, mergeAssets, NO_ASSETS, type SceneAssets } from '../scene/assets';
 import { formatIssue } from '../scene/schema';
 import type { Scene } from '../scene/types';
 import type { App } from './App';
@@ -223,7 +223,7 @@ async function restoreFiles(
     for (const step of list) {
       const result = await resolveAssets(step, files, assets);
       if (result.ok) {
-        assets = result.assets.maps.size + result.assets.meshes.size ? merge(assets, result.assets) : assets;
+        assets = mergeAssets(assets, result.assets);
         out.push(step);
       } else dropped++;
     }
@@ -234,8 +234,4 @@ async function restoreFiles(
   void pruneAssets(saved.assets);
   const notes = dropped ? [`Restored your last scene, but ${dropped} undo steps named files that are no longer kept.`] : [];
   return { ok: true, assets, notes };
-}
-
-function merge(a: SceneAssets, b: SceneAssets): SceneAssets {
-  return { maps: new Map([...a.maps, ...b.maps]), meshes: new Map([...a.meshes, ...b.meshes]) };
 }

@@ -57,10 +57,18 @@ export interface MaterialBase {
   emission?: Emission;
 }
 
-/** A control of the page's material panel, as data (src/app/materialControls.ts builds it). */
+/**
+ * A control of the page's material panel, as data (src/app/materialControls.ts
+ * builds it). `texturable`: the input may be a texture (one of the kind's
+ * `textures`, its `opacity`): where the object has texture coordinates the
+ * page shows a texture slot while it is one, and an image opened or dropped
+ * on the control makes it one.
+ */
 export type MaterialControl =
-  | { control: 'color'; key: string; label: string }
-  | { control: 'number'; key: string; label: string; min: number; max: number; step: number }
+  | { control: 'color'; key: string; label: string; texturable?: boolean }
+  | { control: 'number'; key: string; label: string; min: number; max: number; step: number; texturable?: boolean }
+  /** An input that is only ever a texture (a normal map): absent, or a texture slot. */
+  | { control: 'texture'; key: string; label: string; input: TextureInput }
   | {
       control: 'choice';
       key: string;

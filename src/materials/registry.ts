@@ -197,6 +197,20 @@ export function materialSeeThrough(m: Material): boolean {
 /** The page's controls of a material's kind. */
 export const materialControls = (m: Material): readonly MaterialControl[] => kindOf(m).controls;
 export const kindLabel = (type: string) => BY_TYPE.get(type)?.label ?? type;
+/** What a control's input takes when it is a texture (null: never one). */
+export function controlTextureInput(control: MaterialControl): TextureInput | null {
+  if (control.control === 'texture') return control.input;
+  if (control.control === 'choice' || !control.texturable) return null;
+  return control.control === 'color' ? 'color' : 'scalar';
+}
+
+/** The value of input `key` of `m`'s kind when the scene leaves it out (its schema's default; undefined for an optional one). */
+export function inputDefault(m: Material, key: string): unknown {
+  const schema = kindOf(m).shape[key] as z.ZodType | undefined;
+  const parsed = schema?.safeParse(undefined);
+  return parsed?.success ? parsed.data : undefined;
+}
+
 /** The key of a material's main color (its kind's first color control: `color`, or a principled material's `baseColor`). */
 export const mainColorKey = (m: Material): string => kindOf(m).controls.find((c) => c.control === 'color')?.key ?? 'color';
 
@@ -212,8 +226,11 @@ export function switchMaterialType(current: Material, to: MaterialType, remember
     const { emission: _dropped, ...parameters } = structuredClone(remembered);
     return { ...parameters, ...e } as Material;
   }
-  const from = current as { color?: Vec3; roughness?: number };
-  return { ...(BY_TYPE.get(to)!.fromOther({ color: from.color, roughness: from.roughness }) as Material), ...e };
+  // A texture stays behind: the other kinds' inputs may not take one.
+  const from = current as { color?: unknown; roughness?: unknown };
+  const color = Array.isArray(from.color) ? (from.color as Vec3) : undefined;
+  const roughness = typeof from.roughness === 'number' ? from.roughness : undefined;
+  return { ...(BY_TYPE.get(to)!.fromOther({ color, roughness }) as Material), ...e };
 }
 
 // ---------------------------------------------------------------- records

@@ -31,6 +31,16 @@ export interface SceneAssets {
 
 export const NO_ASSETS: SceneAssets = { maps: new Map(), meshes: new Map(), images: new Map() };
 
+/** The files of both (`b`'s where both name one); `a` itself when `b` adds nothing. */
+export function mergeAssets(a: SceneAssets, b: SceneAssets): SceneAssets {
+  if (!b.maps.size && !b.meshes.size && !b.images?.size) return a;
+  return {
+    maps: new Map([...a.maps, ...b.maps]),
+    meshes: new Map([...a.meshes, ...b.meshes]),
+    images: new Map([...(a.images ?? []), ...(b.images ?? [])]),
+  };
+}
+
 export type AssetKind = 'map' | 'mesh' | 'image';
 
 /** A file a scene names, with the scene path that names it. */

@@ -65,6 +65,16 @@ describe('switchMaterialType', () => {
   });
 });
 
+describe('switchMaterialType from textures', () => {
+  it('leaves a textured color and roughness behind: the other kinds take constants', () => {
+    const texture = { image: 'r.png', channel: 'r' as const, scale: 1, uv: { offset: [0, 0] as [number, number], scale: [1, 1] as [number, number], rotation: 0 } };
+    const textured = { type: 'principled', baseColor: texture, roughness: texture, metallic: 0, ior: 1.5, specTint: 0, specTrans: 0, sheen: 0, sheenTint: 0, clearcoat: 0, clearcoatGloss: 0, opacity: 1 } as unknown as Material;
+    const standard = switchMaterialType(textured, 'standard');
+    expect(standard).toEqual({ type: 'standard', color: [0.8, 0.8, 0.8], roughness: 1 });
+    expect(sceneWith(standard).spheres[0].material).toEqual(standard);
+  });
+});
+
 describe('withEmissionIntensity', () => {
   it('adds emission with the given color when the intensity becomes positive', () => {
     const m = structuredClone(red);

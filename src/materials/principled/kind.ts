@@ -140,7 +140,7 @@ export const principled: MaterialKind<PrincipledMaterial> = {
       }),
     ]),
   controls: [
-    { control: 'color', key: 'baseColor', label: 'base color' },
+    { control: 'color', key: 'baseColor', label: 'base color', texturable: true },
     ...SCALARS.map(([key]) => ({
       control: 'number' as const,
       key,
@@ -148,7 +148,10 @@ export const principled: MaterialKind<PrincipledMaterial> = {
       min: key === 'ior' ? MIN_IOR : 0,
       max: key === 'ior' ? MAX_IOR : 1,
       step: 0.01,
+      texturable: TEXTURED_SCALARS.includes(key),
     })),
+    { control: 'number', key: 'opacity', label: 'opacity', min: 0, max: 1, step: 0.01, texturable: true },
+    { control: 'texture', key: 'normalMap', label: 'normal map', input: 'normal' },
   ],
   fromOther: (current) => ({
     type: 'principled',
