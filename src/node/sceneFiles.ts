@@ -4,6 +4,7 @@
  */
 import { readFile } from 'node:fs/promises';
 import path from 'node:path';
+import { materialTextures } from '../materials/registry';
 import type { SceneAssets } from '../scene/assets';
 import type { Scene } from '../scene/types';
 
@@ -16,7 +17,7 @@ export interface SceneFiles {
 
 /** Reads and decodes every file `scene` names; throws SceneError naming each unusable one (`meshes[0].file: ...`). */
 export async function readSceneFiles(scene: Scene, sceneFile: string): Promise<SceneFiles> {
-  if (!namesFiles(scene)) return { files: {}, assets: { maps: new Map(), meshes: new Map() } };
+  if (!namesFiles(scene)) return { files: {}, assets: { maps: new Map(), meshes: new Map(), images: new Map() } };
   // The decoders (three.js's EXR loader, glTF-Transform, Draco) load only
   // for scenes that need them: the CLI starts fast, and owns Ctrl-C early.
   const { loadSceneAssets } = await import('../scene/assets');
@@ -30,7 +31,8 @@ export async function readSceneFiles(scene: Scene, sceneFile: string): Promise<S
   return { files, assets };
 }
 
-/** Whether the scene names any file. */
+/** Whether the scene names any file (a mesh's textures come with the mesh; the ground's alone). */
 export function namesFiles(scene: Scene): boolean {
-  return scene.meshes.length > 0 || (scene.environment !== null && 'map' in scene.environment);
+  const groundTextured = scene.ground !== null && materialTextures(scene.ground.material).length > 0;
+  return scene.meshes.length > 0 || (scene.environment !== null && 'map' in scene.environment) || groundTextured;
 }
