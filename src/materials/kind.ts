@@ -113,6 +113,8 @@ export interface MaterialKind<M extends MaterialBase = MaterialBase> {
   readonly textures?: readonly TextureSlot[];
   /** Its opacity (1: opaque), when the kind has one: a cut-out or see-through surface (Mitsuba's `mask`). */
   readonly opacity?: (m: M) => number | Texture;
+  /** Whether its emission's color may be a texture (version 3). */
+  readonly texturedEmission?: boolean;
   /** Its normal map, when the kind has one (Mitsuba's `normalmap`). */
   readonly normalMap?: (m: M) => Texture | undefined;
   /** The page's controls for its keys. */

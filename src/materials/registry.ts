@@ -12,8 +12,9 @@
 import * as z from 'zod';
 import { defineRecord, fieldRead, packRecord, type RecordLayout } from '../render/layout/records';
 import { el, float } from '../scene/mitsubaXml';
-import { emission } from '../scene/schemaParts';
-import { isTexture, type Texture, type TextureInput } from '../scene/texture/texture';
+import { emission, emissionShape, intensity } from '../scene/schemaParts';
+import { color } from '../scene/schemaParts';
+import { isTexture, scaleColor, texturable, textureJson, type Texture, type TextureInput } from '../scene/texture/texture';
 import type { Emission, Vec3 } from '../scene/types';
 import { conductor, type ConductorMaterial } from './conductor/kind';
 import { dielectric, type DielectricMaterial } from './dielectric/kind';
@@ -45,10 +46,13 @@ export function defaultMaterial(): Material {
 
 // ---------------------------------------------------------------- schema
 
+/** An emission whose color may be a texture (the kinds with texturedEmission). */
+const texturedEmission = z.strictObject({ ...emissionShape, color: texturable(color(intensity), 'color').default((): Vec3 => [1, 1, 1]) }).optional();
+
 const schemas = new Map<string, z.ZodType<unknown>>(
   KINDS.map((kind) => {
     const type = kind === DEFAULT_KIND ? z.literal(kind.type).default(kind.type) : z.literal(kind.type);
-    const schema = z.strictObject({ type, ...kind.shape, emission }).superRefine((parsed, ctx) => {
+    const schema = z.strictObject({ type, ...kind.shape, emission: kind.texturedEmission ? texturedEmission : emission }).superRefine((parsed, ctx) => {
       for (const [key, message] of kind.check?.(parsed) ?? []) ctx.addIssue({ code: 'custom', path: [key], message });
     });
     return [kind.type, schema as z.ZodType<unknown>] as const;
@@ -70,8 +74,11 @@ export const MATERIAL_KEYS: readonly string[] = [...new Set(['type', ...KINDS.fl
 export function normalizeMaterial(parsed: Record<string, unknown>): Material {
   const kind = kindOf(parsed as { type: string });
   const material = clean(kind.normalize(parsed)) as Material;
-  const e = parsed.emission as Emission | undefined;
-  if (e) material.emission = { color: clean(e.color) as Vec3, intensity: clean(e.intensity) as number };
+  const e = parsed.emission as { color: Vec3 | Texture; intensity: number } | undefined;
+  if (e && isTexture(e.color)) {
+    const texture = clean(e.color) as Texture;
+    material.emission = { color: scaleColor(texture), intensity: clean(e.intensity) as number, texture };
+  } else if (e) material.emission = { color: clean(e.color) as Vec3, intensity: clean(e.intensity) as number };
   return material;
 }
 
@@ -101,7 +108,8 @@ export function typeVersion(type: unknown): number | undefined {
 /** Scene JSON of a material, every value explicit; a version-1 document has no `type` key. */
 export function materialJson(m: Material, version: number): Record<string, unknown> {
   const keys = kindOf(m).json(m);
-  const e = m.emission ? { emission: { color: [...m.emission.color], intensity: m.emission.intensity } } : {};
+  const color = m.emission?.texture ? textureJson(m.emission.texture, 'color') : [...(m.emission?.color ?? [])];
+  const e = m.emission ? { emission: { color, intensity: m.emission.intensity } } : {};
   return version === 1 ? keys : { type: m.type, ...keys, ...e };
 }
 
@@ -137,7 +145,10 @@ export const meshBsdf = (m: Material, textures: MitsubaTextures = NO_MITSUBA_TEX
 
 /** A texture a material reads, with its key and the input it feeds. */
 export interface MaterialTexture {
+  /** Its slot: a key of the kind's, or "emission" (the emission's color). */
   key: string;
+  /** Where it is in the material's JSON (["emission", "color"] for the emission's). */
+  path: string[];
   texture: Texture;
   input: TextureInput;
 }
@@ -149,13 +160,30 @@ export function materialTextures(m: Material): MaterialTexture[] {
   const out: MaterialTexture[] = [];
   for (const slot of kind.textures ?? []) {
     const value = values[slot.key];
-    if (isTexture(value)) out.push({ key: slot.key, texture: value, input: slot.input });
+    if (isTexture(value)) out.push({ key: slot.key, path: [slot.key], texture: value, input: slot.input });
   }
   const opacity = kind.opacity?.(m);
-  if (isTexture(opacity)) out.push({ key: 'opacity', texture: opacity, input: 'scalar' });
+  if (isTexture(opacity)) out.push({ key: 'opacity', path: ['opacity'], texture: opacity, input: 'scalar' });
   const normalMap = kind.normalMap?.(m);
-  if (normalMap) out.push({ key: 'normalMap', texture: normalMap, input: 'normal' });
+  if (normalMap) out.push({ key: 'normalMap', path: ['normalMap'], texture: normalMap, input: 'normal' });
+  if (m.emission?.texture) out.push({ key: 'emission', path: ['emission', 'color'], texture: m.emission.texture, input: 'color' });
   return out;
+}
+
+/** The switch of a kind's texture slot (HAS_TEXTURE_<KIND>_<KEY>): compiled only when some material textures it. */
+export const textureSlotDefine = (type: string, key: string) => `HAS_TEXTURE_${upperName(type)}_${upperName(key)}`;
+
+/** The texture slots a scene's materials use, as their switches' names. */
+export function textureSlotFeatures(materials: Iterable<Material>): string[] {
+  const used = new Set<string>();
+  for (const m of materials) for (const t of materialTextures(m)) used.add(textureSlotDefine(m.type, t.key));
+  return [...used].sort();
+}
+
+/** Every texture slot's switch, 1 where `used` names it. */
+export function textureSlotDefines(used: readonly string[]): Record<string, number> {
+  const all = KINDS.flatMap((k) => [...(k.textures ?? []).map((slot) => slot.key), ...(k.texturedEmission ? ['emission'] : [])].map((key) => textureSlotDefine(k.type, key)));
+  return Object.fromEntries(all.map((name) => [name, used.includes(name) ? 1 : 0]));
 }
 
 /** Whether a material lets light through anywhere (opacity below 1, or an opacity texture). */
@@ -210,7 +238,12 @@ const FLAG_TWO_SIDED = 16;
 const LAYOUTS = new Map<string, RecordLayout>(KINDS.map((k) => [k.type, defineRecord(`${capitalized(k.type)}Material`, [...HEADER_FIELDS, ...k.fields])]));
 
 /** Texture-slot keys of a kind whose inputs may be textures: its slots, then its opacity's and normal map's. */
-const slotKeys = (k: MaterialKind<Material>) => [...(k.textures ?? []).map((t) => t.key), ...(k.opacity ? ['opacity'] : []), ...(k.normalMap ? ['normalMap'] : [])];
+const slotKeys = (k: MaterialKind<Material>) => [
+  ...(k.textures ?? []).map((t) => t.key),
+  ...(k.opacity ? ['opacity'] : []),
+  ...(k.normalMap ? ['normalMap'] : []),
+  ...(k.texturedEmission ? ['emission'] : []),
+];
 const textureField = (key: string) => `texture${key[0].toUpperCase()}${key.slice(1)}`;
 /**
  * The record's surface inputs, for kinds that have any: after the kind's
@@ -323,21 +356,36 @@ export function surfaceInputsGlsl(): string {
   };
   const perKind = (body: (k: MaterialKind<Material>) => string[], otherwise: string) =>
     [...kinds.map((k) => `  if (materialType(m) == MATERIAL_${upperName(k.type)}) {\n${body(k).map((l) => `    ${l}`).join('\n')}\n  }`), `  ${otherwise}`].join('\n');
+  // Each slot compiled only where the scene textures it (SwiftShader runs masked blocks too).
   const apply = (k: MaterialKind<Material>) =>
-    (k.textures ?? []).map((slot) => {
+    (k.textures ?? []).flatMap((slot) => {
       const field = LAYOUTS.get(k.type)!.fields.find((f) => f.name === slot.key)!;
       const lookup = slot.input === 'color' ? 'textureColor' : 'textureScalar';
-      return `{ int t = int(${surfaceField(k, textureField(slot.key))}); if (t >= 0) ${fieldRead(field, 'b.')} *= ${lookup}(t, uv); }`;
+      return [
+        `#if ${textureSlotDefine(k.type, slot.key)}`,
+        `{ int t = int(${surfaceField(k, textureField(slot.key))}); if (t >= 0) ${fieldRead(field, 'b.')} *= ${lookup}(t, uv); }`,
+        '#endif',
+      ];
     });
   const opacity = (k: MaterialKind<Material>) =>
     k.opacity
       ? [`float o = ${surfaceField(k, 'opacity')};`, `int t = int(${surfaceField(k, textureField('opacity'))});`, 'return t >= 0 ? o * textureScalar(t, uv) : o;']
       : ['return 1.0;'];
   const normalMap = (k: MaterialKind<Material>) => [`return ${k.normalMap ? `int(${surfaceField(k, textureField('normalMap'))})` : '-1'};`];
+  const emissionAt = (k: MaterialKind<Material>) =>
+    k.texturedEmission
+      ? [
+          `#if ${textureSlotDefine(k.type, 'emission')}`,
+          `{ int t = int(${surfaceField(k, textureField('emission'))}); if (t >= 0) return materialEmission(m) * textureColor(t, uv); }`,
+          '#endif',
+          'return materialEmission(m);',
+        ]
+      : ['return materialEmission(m);'];
   return [
     '// Generated from src/materials/registry.ts: do not edit.',
     `// The opacity at uv (1: opaque).\nfloat materialOpacity(Material m, vec2 uv) {\n${perKind(opacity, 'return 1.0;')}\n}`,
     `// The normal map's texture (-1: none).\nint materialNormalMap(Material m) {\n${perKind(normalMap, 'return -1;')}\n}`,
+    `// The emitted radiance at uv (the record's, times its texture where the color is one).\nvec3 materialEmissionAt(Material m, vec2 uv) {\n${perKind(emissionAt, 'return materialEmission(m);')}\n}`,
     `// The textured inputs of b (the record's constants, or their textures' scales) times their lookups at uv.\nvoid applyMaterialTextures(inout Bsdf b, Material m, vec2 uv) {\n${perKind((k) => [...apply(k), 'return;'], 'return;')}\n}`,
   ].join('\n');
 }

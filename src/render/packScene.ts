@@ -6,7 +6,7 @@
  * sphere whose material emits is also an emitter. Light sampling picks an
  * emitter in proportion to its power through an alias table.
  */
-import { materialFeatures, materialSeeThrough, materialTextures, packEmitterOnly, packMaterial, type MaterialTexture } from '../materials/registry';
+import { materialFeatures, materialSeeThrough, materialTextures, textureSlotFeatures, packEmitterOnly, packMaterial, type MaterialTexture } from '../materials/registry';
 import { CHANNELS, type TextureInput } from '../scene/texture/texture';
 import { ATLAS_FORMATS, type AtlasFormat, type Placement } from './textures/atlas';
 import type { Material, Scene, Vec3 } from '../scene/types';
@@ -37,6 +37,8 @@ export interface SceneFeatures {
   seeThrough: boolean;
   /** Normal maps (the tangent frame and Mitsuba's normalmap adapter). */
   normalMaps: boolean;
+  /** The texture slots some material uses (registry's textureSlotDefine names): only those are compiled. */
+  textureSlots: readonly string[];
 }
 
 /** A scene with nothing optional: spheres of the default material under a constant sky. */
@@ -50,6 +52,7 @@ export const BASE_FEATURES: SceneFeatures = {
   textureFormats: [],
   seeThrough: false,
   normalMaps: false,
+  textureSlots: [],
 };
 
 /** What packing needs to know of the scene's decoded files. */
@@ -60,6 +63,8 @@ export interface PackOptions {
   meshes?: readonly { area: number; triangles: number }[];
   /** How the meshes are stored (src/render/bvh/groups.ts), as the BVH was built: instances need their shader code. */
   groups?: MeshGroups;
+  /** Textured emissions: each emissive mesh's area-weighted mean of its texture's luminance (records.ts areaMean), by mesh index. */
+  emissionScale?: ReadonlyMap<number, number>;
   /** Where a texture's image is in the atlas (src/render/textures/atlas.ts), for the inputs it feeds. */
   placement?: (image: string, input: TextureInput) => Placement;
 }
@@ -99,7 +104,7 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
   const spheres = sceneSpheres(scene);
   const emitters = spheres.flatMap((s, index) => (power(s) > 0 ? [{ index, sphere: s }] : []));
   const environmentPower = mapEnvironmentPower(scene, spheres, options.environmentIntegral);
-  const meshEmitters = emissiveMeshes(scene, options.meshes ?? []);
+  const meshEmitters = emissiveMeshes(scene, options.meshes ?? [], options.emissionScale);
   const powers = [
     ...emitters.map((e) => power(e.sphere)),
     ...(environmentPower > 0 ? [environmentPower] : []),
@@ -178,6 +183,7 @@ export function packScene(scene: Scene, options: PackOptions = {}): PackedScene 
     textureFormats: ATLAS_FORMATS.filter((f) => textures.formats.has(f)),
     seeThrough: sceneMaterials.some(materialSeeThrough),
     normalMaps: sceneMaterials.some((m) => materialTextures(m).some((t) => t.input === 'normal')),
+    textureSlots: textureSlotFeatures(sceneMaterials),
   };
   return { data, block, features, meshMaterials, meshEmitters: meshEmitters.map(({ mesh, first, count }) => ({ mesh, first, count })) };
 }
@@ -222,12 +228,13 @@ const luminance = (c: Vec3) => 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
  * Meshes whose material emits, with their power (pi * area * luminance: one
  * side emits) and their triangles' slots in the emissive-triangle texture.
  */
-function emissiveMeshes(scene: Scene, sizes: readonly { area: number; triangles: number }[]) {
+function emissiveMeshes(scene: Scene, sizes: readonly { area: number; triangles: number }[], emissionScale?: ReadonlyMap<number, number>) {
   let first = 0;
   return scene.meshes.flatMap((mesh, i) => {
     const radiance = emittedRadiance(mesh.material);
     const size = sizes[i];
-    const power = size ? Math.PI * size.area * luminance(radiance) : 0;
+    const textured = mesh.material.emission?.texture ? (emissionScale?.get(i) ?? 1) : 1;
+    const power = size ? Math.PI * size.area * luminance(radiance) * textured : 0;
     if (!(power > 0)) return [];
     const slots = { mesh: i, first, count: size.triangles, area: size.area, power, radiance };
     first += size.triangles;

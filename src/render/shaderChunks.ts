@@ -13,7 +13,7 @@ import type { SceneFeatures } from './packScene';
 import { samplingDefines, type SamplerKind } from './sampling';
 import { bvhDefines } from './bvhTextures';
 import { ATLAS_FORMATS } from './textures/atlas';
-import { bsdfDispatchGlsl, surfaceInputsGlsl, MATERIAL_CHUNK_GUARDS, MATERIAL_CHUNK_NAMES, materialDefines, materialFeatureDefines, materialGlsl } from '../materials/registry';
+import { bsdfDispatchGlsl, surfaceInputsGlsl, textureSlotDefines, MATERIAL_CHUNK_GUARDS, MATERIAL_CHUNK_NAMES, materialDefines, materialFeatureDefines, materialGlsl } from '../materials/registry';
 
 /** The chunks every kernel that touches the scene needs. */
 export const SCENE_CHUNK_NAMES = [
@@ -90,6 +90,8 @@ export function featureDefines(features: SceneFeatures): Record<string, number> 
     ...Object.fromEntries(ATLAS_FORMATS.map((f) => [`HAS_TEXTURES_${f.toUpperCase()}`, features.textureFormats.includes(f) ? 1 : 0])),
     HAS_SEE_THROUGH: features.seeThrough ? 1 : 0,
     HAS_NORMAL_MAPS: features.normalMaps ? 1 : 0,
+    ...textureSlotDefines(features.textureSlots),
+    HAS_TEXTURED_EMISSION: features.textureSlots.some((s) => s.endsWith('_EMISSION')) && features.emissiveMeshes ? 1 : 0,
     HAS_ENV_MAP: features.environmentMap ? 1 : 0,
     HAS_MESHES: features.meshes ? 1 : 0,
     HAS_EMISSIVE_MESHES: features.emissiveMeshes ? 1 : 0,

@@ -36,7 +36,7 @@ export interface AssetReference {
 
 /** The texture images a material names, at their scene paths (`meshes[0].material.baseColor.image`). */
 function imageReferences(material: Material, path: string): AssetReference[] {
-  return materialTextures(material).map((t) => ({ kind: 'image', file: t.texture.image, path: `${path}.${t.key}.image` }));
+  return materialTextures(material).map((t) => ({ kind: 'image', file: t.texture.image, path: `${path}.${t.path.join('.')}.image` }));
 }
 
 export function assetReferences(scene: Scene): AssetReference[] {

@@ -126,7 +126,7 @@ const lightShape = {
 };
 /** Spheres have no texture coordinates (the format's rule), so no textures. */
 const sphereMaterial = material.superRefine((m, ctx) => {
-  for (const t of materialTextures(m)) ctx.addIssue({ code: 'custom', path: [t.key], message: 'cannot be a texture on a sphere (spheres have no texture coordinates)' });
+  for (const t of materialTextures(m)) ctx.addIssue({ code: 'custom', path: t.path, message: 'cannot be a texture on a sphere (spheres have no texture coordinates)' });
 });
 const sphereShape = { center: point(), radius: length(), material: sphereMaterial };
 const positiveScale = () => z.number().gt(0).max(MAX_COORDINATE);

@@ -7,14 +7,18 @@ export type Vec3 = [number, number, number];
 
 /** Radiance `color * intensity` emitted from the outside of a surface (version 2). */
 export interface Emission {
+  /** The color, or a texture's scale (as a color) when `texture` is set. */
   color: Vec3;
   intensity: number;
+  /** Version 3 (principled): the color is this texture (times `color`, its scale). */
+  texture?: Texture;
 }
 
 /** A material of any kind (src/materials/: one folder per kind, listed by the registry). */
 export type { Material, MaterialType } from '../materials/registry';
 import type { Material } from '../materials/registry';
 import type { EnvironmentDistribution } from './envmap/distribution';
+import type { Texture } from './texture/texture';
 
 export interface Camera {
   position: Vec3;

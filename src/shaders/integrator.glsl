@@ -67,7 +67,7 @@ bool scatters(Hit hit, Material material) { return hit.kind != HIT_NONE && bsdfS
 // Dirac delta).
 vec3 emitted(Hit hit, Material material, vec3 direction, vec3 previousPosition, bool previousDelta, float previousPdf) {
   float weight = previousDelta ? 1.0 : powerHeuristic(previousPdf, lightPdf(previousPosition, direction, hit));
-  vec3 surface = dot(direction, hit.normal) < 0.0 ? materialEmission(material) : vec3(0.0);
+  vec3 surface = dot(direction, hit.normal) < 0.0 ? surfaceEmission(material, hit.uv) : vec3(0.0);
   return (hit.kind == HIT_NONE ? escapedRadiance(direction) : surface) * weight;
 }
 

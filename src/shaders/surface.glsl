@@ -35,6 +35,15 @@ Bsdf evalMaterial(Material m, Surface s) {
   return b;
 }
 
+// The radiance the material emits at uv (a textured emission's texture read there).
+vec3 surfaceEmission(Material m, vec2 uv) {
+#if HAS_SURFACE_INPUTS
+  return materialEmissionAt(m, uv);
+#else
+  return materialEmission(m);
+#endif
+}
+
 // The normal the BSDF's frame is built around: a two-sided material seen
 // from behind shades as from the front (Mitsuba's `twosided`).
 vec3 facingNormal(Surface s, Bsdf b, vec3 direction) {

@@ -125,6 +125,7 @@ export const principled: MaterialKind<PrincipledMaterial> = {
     ...TEXTURED_SCALARS.map((key) => ({ key, input: 'scalar' as const })),
   ],
   opacity: (m) => m.opacity,
+  texturedEmission: true,
   normalMap: (m) => m.normalMap,
   glsl: '../materials/principled/principled.glsl',
   // A textured specTrans may transmit anywhere its image is not black.

@@ -98,12 +98,12 @@ describe('principled: schema, serialization, export, record', () => {
   });
 
   it('packs baseColor and the nine scalars into texels 1 to 3, the opacity and texture indices after them', () => {
-    expect(MATERIAL_TEXELS).toBe(6);
+    expect(MATERIAL_TEXELS).toBe(7);
     const m = principled({ baseColor: [0.1, 0.2, 0.3], metallic: 0.4, roughness: 0.5, ior: 1.6, specTint: 0.7, specTrans: 0.8, sheen: 0.9, sheenTint: 0.25, clearcoat: 0.75, clearcoatGloss: 0.125 });
     const record = packMaterial(m, true);
     expect(Array.from(record.subarray(4, 16))).toEqual([0.1, 0.2, 0.3, 0.4, 0.5, 1.6, 0.7, 0.8, 0.9, 0.25, 0.75, 0.125].map(Math.fround));
-    // Opacity 1, then no texture in any of the seven slots.
-    expect(Array.from(record.subarray(16))).toEqual([1, -1, -1, -1, -1, -1, -1, -1]);
+    // Opacity 1, then no texture in any of the eight slots (the emission's last).
+    expect(Array.from(record.subarray(16, 25))).toEqual([1, -1, -1, -1, -1, -1, -1, -1, -1]);
     const back = unpackMaterial(record);
     expect(back.type).toBe('principled');
     // A transmitting principled material is a solid's boundary: never two-sided.

@@ -77,9 +77,12 @@ export class AssetTextures {
    * instance table, and the emissive-triangle table of `emitters` unless
    * their slots are unchanged.
    */
-  setMeshes(world: WorldMeshes, emitters: readonly MeshEmitterSlots[], prebuilt?: PrebuiltBvh): void {
-    const emissiveKey = JSON.stringify(emitters);
-    const emissive = (triangleOrder: Uint32Array) => ({ key: emissiveKey, table: emitters.length > 0 ? new EmissiveTriangles(this.gl, emissiveTriangleRecords(world, triangleOrder, emitters)) : null });
+  setMeshes(world: WorldMeshes, emitters: readonly MeshEmitterSlots[], prebuilt?: PrebuiltBvh, means: ReadonlyMap<number, Float32Array> = new Map()): void {
+    const emissiveKey = JSON.stringify(emitters) + [...means.values()].map((m) => meansId(m)).join(',');
+    const emissive = (triangleOrder: Uint32Array) => ({
+      key: emissiveKey,
+      table: emitters.length > 0 ? new EmissiveTriangles(this.gl, emissiveTriangleRecords(world, triangleOrder, emitters, means)) : null,
+    });
     if (this.bvh && this.bvh.world.key === world.key && this.bvh.world.data === world.data) {
       this.bvh.instances?.update(instanceRecords(world, this.bvh.roots));
       if (this.bvh.emissive.key !== emissiveKey) {
@@ -127,6 +130,11 @@ export class AssetTextures {
     this.bvh = null;
   }
 }
+
+/** A stable id per means array (the emissive table is rebuilt when they change). */
+const MEANS_IDS = new WeakMap<Float32Array, number>();
+let nextMeansId = 0;
+const meansId = (m: Float32Array) => MEANS_IDS.get(m) ?? (MEANS_IDS.set(m, ++nextMeansId), nextMeansId);
 
 /** The instance table as a one-row RGBA32F texture (scene/layout.glsl uInstances), and its count. */
 class InstanceTable {

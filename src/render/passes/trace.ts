@@ -6,6 +6,7 @@ import { TEXTURE_UNITS } from '../gl/textureUnits';
 import type { PingPong } from '../gl/targets';
 import { missingAssets, type SceneAssets } from '../../scene/assets';
 import type { TextureInput } from '../../scene/texture/texture';
+import { areaMean, textureEmissionMeans } from '../geometry/records';
 import { SceneError } from '../../scene/schema';
 import { BLOCK_VEC4S, DATA_ROWS, SCENE_ROW_TEXELS } from '../layout/scene';
 import { AssetTextures, environmentDistribution } from './assetTextures';
@@ -64,6 +65,8 @@ export class TracePass {
   private world: WorldMeshes | null = null;
   /** The scene's decoded files on the GPU (environment map). */
   private readonly assets: AssetTextures;
+  /** Textured emissions' per-triangle means, kept per mesh data and texture (records.ts). */
+  private readonly emissionMeans = new WeakMap<object, Map<string, Float32Array>>();
   /** What setScene last uploaded: other passes built from the scene chunks need its camera and features. */
   private current: { scene: Scene; frame: CameraFrame; width: number; height: number; features: SceneFeatures } | null = null;
 
@@ -112,10 +115,13 @@ export class TracePass {
     this.assets.setEnvironmentMap(map);
     const world = (this.world = prepareWorldMeshes(scene, assets, this.world));
     const environmentIntegral = map ? environmentDistribution(map).integral : undefined;
-    this.assets.setTextures(scene, assets.images ?? new Map());
+    const images = assets.images ?? new Map();
+    this.assets.setTextures(scene, images);
     const placement = (image: string, input: TextureInput) => this.assets.textures.placement(image, input);
-    const packed = packScene(scene, { environmentIntegral, meshes: world.sizes, groups: world.groups, placement });
-    this.assets.setMeshes(world, packed.meshEmitters, bvh);
+    const means = textureEmissionMeans(scene, world, images, this.emissionMeans);
+    const emissionScale = new Map([...means].map(([i, m]) => [i, areaMean(world.meshes[i]!, m)]));
+    const packed = packScene(scene, { environmentIntegral, meshes: world.sizes, groups: world.groups, placement, emissionScale });
+    this.assets.setMeshes(world, packed.meshEmitters, bvh, means);
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
     gl.bufferSubData(gl.UNIFORM_BUFFER, 0, packed.block);
     gl.bindBuffer(gl.UNIFORM_BUFFER, null);

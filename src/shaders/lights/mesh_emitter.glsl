@@ -17,7 +17,13 @@
 // format's one-sided emission).
 //
 // uEmissiveTriangles: RGBA32F, BVH_TEXTURE_WIDTH wide; slot s at
-// (s % W, s / W) = (BVH triangle, alias threshold, alias's BVH triangle, 0).
+// (s % W, s / W) = (BVH triangle, alias threshold, alias slot, ratio): a
+// textured emission picks triangles by power (records.ts emissionMeans),
+// so a point's density is the area density times `ratio` (the triangle's
+// share of the power over its share of the area). The sample reports the
+// area density (the one meshEmitterPdf gives a BSDF-sampled hit, so the
+// two strategies' MIS weights still sum to one) and its radiance over
+// `ratio`: f Le / p is unchanged, the weights stay consistent.
 //
 // Compiled in only for scenes with emissive meshes (HAS_EMISSIVE_MESHES).
 
@@ -32,7 +38,8 @@ vec3 sampleMeshEmitter(vec3 x, Emitter e, vec3 u, out float pdf, out float dista
   float scaled = u.z * float(e.count);
   int k = min(int(scaled), e.count - 1);
   vec4 slot = bvhTexel(uEmissiveTriangles, e.first + k);
-  int triangle = int(scaled - float(k) < slot.y ? slot.x : slot.z);
+  if (scaled - float(k) >= slot.y) slot = bvhTexel(uEmissiveTriangles, e.first + int(slot.z));
+  int triangle = int(slot.x);
   float s = sqrt(u.x);
   BvhSurface surface = bvhSurface(BvhHit(triangle, 0.0, vec2(s * (1.0 - u.y), s * u.y)));
   vec3 toLight = surface.position - x;
@@ -40,7 +47,13 @@ vec3 sampleMeshEmitter(vec3 x, Emitter e, vec3 u, out float pdf, out float dista
   vec3 direction = toLight / distance;
   float cosLight = abs(dot(direction, surface.shadingNormal));
   pdf = cosLight > 0.0 ? loadMesh(e.primitive).areaPdf / e.pdf * distance * distance / cosLight : 0.0;
-  radiance = dot(direction, surface.shadingNormal) < 0.0 ? e.radiance : vec3(0.0);
+#if HAS_TEXTURED_EMISSION
+  Material m = loadMaterial(loadMesh(e.primitive).materialBase + surface.localMaterial);
+  vec3 emitted = materialEmissionAt(m, surface.uv) / slot.w;
+#else
+  vec3 emitted = e.radiance;
+#endif
+  radiance = dot(direction, surface.shadingNormal) < 0.0 ? emitted : vec3(0.0);
   return direction;
 }
 
