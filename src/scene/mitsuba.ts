@@ -26,7 +26,8 @@
  *   the BSDF inside Mitsuba's `normalmap`, `twosided` and `mask` adapters
  *   (the registry's materialBsdf). On the ground, `to_uv` first turns the
  *   rectangle's coordinates into the format's (u, v) = (x, z).
- * - emission: an `area` emitter on the shape.
+ * - emission: an `area` emitter on the shape (its radiance a baked texture
+ *   where the color is one), times a constant opacity (see areaEmitter).
  * - environment map: `envmap` with scale = intensity, rotated about +y; the
  *   file name as `environmentMapPath` gives it (default: as in the scene).
  * - meshes: a `ply` shape per mesh whose file `meshPath(i)` names: the
@@ -49,10 +50,12 @@
 import { cameraFrame } from './camera';
 import { encodePly } from './mesh/plyEncode';
 import { transformMesh } from './mesh/transform';
-import { materialBsdf, materialSeeThrough, meshBsdf } from '../materials/registry';
+import type { MitsubaTextures } from '../materials/kind';
+import { kindOf, materialBsdf, materialSeeThrough, meshBsdf } from '../materials/registry';
 import { el, float, integer, num, point, rgb, serializeXml, str, triple, type XmlNode } from './mitsubaXml';
 import { MitsubaTextureBaker, type BakedTexture } from './mitsubaTextures';
 import type { TextureImage } from './texture/image';
+import { isTexture } from './texture/texture';
 import type { Camera, Material, Mesh, Scene, TriangleMesh, Vec3 } from './types';
 
 export { bakedTextureFile, type BakedTexture } from './mitsubaTextures';
@@ -133,11 +136,22 @@ function sensor(camera: Camera, width: number, height: number, spp: number, seed
   ]);
 }
 
-/** The `area` emitter of an emissive material, if any. */
-function areaEmitter(material: Material): XmlNode[] {
+/**
+ * The `area` emitter of an emissive material, if any; a textured emission's
+ * radiance is its baked texture (times color x intensity). Mitsuba adds an
+ * emitter's radiance at every hit, also where `mask` then lets the ray
+ * through, while the format sees emission with probability `opacity`: a
+ * constant opacity multiplies the radiance. (A textured opacity cannot be
+ * multiplied into it: there the export counts the emission in full.)
+ */
+function areaEmitter(material: Material, textures: MitsubaTextures): XmlNode[] {
   const e = material.emission;
-  const radiance = e ? scale3(e.color, e.intensity) : ([0, 0, 0] as Vec3);
-  return isBlack(radiance) ? [] : [el('emitter', { type: 'area' }, [rgb('radiance', radiance)])];
+  if (!e) return [];
+  const opacity = kindOf(material).opacity?.(material) ?? 1;
+  const radiance = scale3(e.color, e.intensity * (isTexture(opacity) ? 1 : opacity));
+  if (isBlack(radiance)) return [];
+  const value = e.texture ? textures.bitmap('radiance', { ...e.texture, scale: radiance }, 'color') : rgb('radiance', radiance);
+  return [el('emitter', { type: 'area' }, [value])];
 }
 
 function environmentEmitter(scene: Scene, opts: MitsubaExportOptions): XmlNode | null {
@@ -248,19 +262,20 @@ export function exportMitsuba(scene: Scene, opts: MitsubaExportOptions = {}): Mi
         point('center', sphere.center),
         float('radius', sphere.radius),
         materialBsdf(sphere.material, baker.forMaterial(`spheres[${i}].material`)),
-        ...areaEmitter(sphere.material),
+        ...areaEmitter(sphere.material, baker.forMaterial(`spheres[${i}].material.emission`)),
       ]),
     );
   });
   scene.meshes.forEach((mesh, i) => {
     if (!opts.meshPath) throw new Error('toMitsubaXml: the scene has meshes; pass meshPath and write meshPlyFile for each');
-    const bsdf = meshBsdf(mesh.material, baker.forMaterial(`meshes[${i}].material`));
+    const textures = baker.forMaterial(`meshes[${i}].material`);
+    const bsdf = meshBsdf(mesh.material, textures);
     children.push(
       el('shape', { type: 'ply' }, [
         str('filename', opts.meshPath(i)),
         el('boolean', { name: 'face_normals', value: String(!(opts.meshSmooth?.(i) ?? true)) }),
         bsdf,
-        ...areaEmitter(mesh.material),
+        ...areaEmitter(mesh.material, textures),
       ]),
     );
   });

@@ -339,6 +339,27 @@ describe('integrator and mask', () => {
     expect(textured.textures.map((t) => t.name)).toEqual(['tex0-a-a-cutoff.pfm']);
   });
 
+  it("writes a textured emission as the area emitter's radiance texture (times color x intensity), and a constant opacity into the radiance", async () => {
+    const mesh = (material: unknown) =>
+      parseSceneText(JSON.stringify({ version: 3, camera: { position: [0, 1, 3], target: [0, 0, 0] }, meshes: [{ file: 'quad.obj', material }] }));
+    const image = testImage();
+    const images = new Map([['e.png', image]]);
+    const options = { images, meshPath: () => 'quad.ply' };
+    const emission = { color: { image: 'e.png', scale: [1, 0.5, 0.25] }, intensity: 4 };
+    const textured = exportMitsuba(mesh({ type: 'principled', emission }), options);
+    const emitter = only(only(parseXml(textured.xml), 'shape'), 'emitter');
+    expect(emitter.attrs.type).toBe('area');
+    expect(only(emitter, 'texture').attrs.name).toBe('radiance');
+    const [baked] = textured.textures;
+    expect(baked.name).toBe('tex0-e-rgb.pfm');
+    baked.values.forEach((v, i) => expectFloat32(v, srgbToLinear(image.data[Math.floor(i / 3) * 4 + (i % 3)] / 255) * [4, 2, 1][i % 3]));
+
+    const halfSeen = parseXml(exportMitsuba(mesh({ type: 'principled', opacity: 0.5, emission: { color: [1, 0.5, 0.25], intensity: 4 } }), options).xml);
+    expect(only(only(only(halfSeen, 'shape'), 'emitter'), 'rgb').attrs.value).toBe('2, 1, 0.5');
+    const halfTextured = exportMitsuba(mesh({ type: 'principled', opacity: 0.5, emission }), options);
+    expect(Math.max(...halfTextured.textures[0].values)).toBeCloseTo(Math.max(...baked.values) / 2, 6);
+  });
+
   it('refuses a textured scene without its images, naming the material', () => {
     expect(() => exportMitsuba(scene({ image: 'a.png' }))).toThrow(/ground\.material \(opacity\): the image "a\.png"/);
   });
