@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Renders the Mitsuba 3 reference of a fixture scene the project adds itself
 # (the shared scenes come with theirs): export through the project's exporter,
-# render with Mitsuba 3 (scalar_rgb, path, box filter), write the PFM beside
+# render with Mitsuba 3 (scalar_rgb, path or volpath as the export says, box
+# filter; baked textures beside the XML), write the PFM beside
 # the others.  Needs `pip install mitsuba` and a built CLI (npm run build).
 #   bash scripts/make-reference.sh NAME [SPP]     (test/fixtures/scenes/NAME.json)
 set -euo pipefail

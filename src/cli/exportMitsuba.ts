@@ -1,9 +1,15 @@
 /**
  * `pathtrace export-mitsuba SCENE.json [-o OUT.xml]`: the scene as a Mitsuba 3
- * XML document, on stdout or written atomically to OUT.xml.
+ * XML document, on stdout or written atomically to OUT.xml. The files it
+ * names are written beside OUT.xml, named after it: `OUT-mesh<i>.ply` per
+ * mesh and `OUT-tex<k>-<image>-<use>.pfm` per baked texture (with stdout,
+ * meshes go to `scene-mesh<i>.ply` in the working folder; a textured scene
+ * needs -o, so that its images have a place beside the XML).
  */
 import { dirname, resolve } from 'node:path';
-import { meshPlyFile, toMitsubaXml, type MitsubaExportOptions } from '../scene/mitsuba';
+import { materialTextures } from '../materials/registry';
+import { bakedTextureFile, exportMitsuba, meshPlyFile, type MitsubaExportOptions } from '../scene/mitsuba';
+import type { Scene } from '../scene/types';
 import { MAX_IMAGE_SIZE } from '../scene/limits';
 import { MAX_SEED, MAX_SPP, parseInteger, parsePositiveInteger, resolveSize } from './args';
 import { usageError } from './errors';
@@ -38,9 +44,23 @@ function parseExportOptions(raw: RawExportOptions): { spp?: number; seed?: numbe
   return out;
 }
 
+/** The scene path of the first texture the scene's materials read, if any (`ground.material.baseColor`). */
+function firstTexture(scene: Scene): string | undefined {
+  const materials = [...(scene.ground ? [{ path: 'ground.material', material: scene.ground.material }] : []), ...scene.meshes.map((m, i) => ({ path: `meshes[${i}].material`, material: m.material }))];
+  for (const { path, material } of materials) {
+    const [texture] = materialTextures(material);
+    if (texture) return `${path}.${texture.key}`;
+  }
+  return undefined;
+}
+
 export async function exportMitsubaCommand(file: string, raw: RawExportOptions, stdout: TextSink, stderr: TextSink): Promise<void> {
   const options = parseExportOptions(raw);
   const scene = await loadSceneFile(file);
+  const textured = firstTexture(scene);
+  if (raw.output === undefined && textured !== undefined) {
+    throw usageError(`${file}: ${textured} is a texture, which the export bakes into image files beside the XML: pass -o OUT.xml`);
+  }
   if (raw.output !== undefined) await checkWritable('-o', raw.output);
   const exportOptions: MitsubaExportOptions = {};
   if (options.spp !== undefined) exportOptions.spp = options.spp;
@@ -54,8 +74,12 @@ export async function exportMitsubaCommand(file: string, raw: RawExportOptions, 
   exportOptions.environmentMapPath = (map) => resolve(dirname(file), map);
   exportOptions.meshPath = (i) => resolve(meshFiles[i].path);
   exportOptions.meshSmooth = (i) => assets.meshes.get(scene.meshes[i].file)!.normals !== null;
+  exportOptions.images = assets.images;
+  const texturePath = (name: string) => `${base}-${name}`;
+  exportOptions.texturePath = (name) => resolve(texturePath(name));
+  const { xml, textures } = exportMitsuba(scene, exportOptions);
   for (const mesh of meshFiles) await writeFileAtomic(mesh.path, mesh.data);
-  const xml = toMitsubaXml(scene, exportOptions);
+  for (const texture of textures) await writeFileAtomic(texturePath(texture.name), bakedTextureFile(texture));
   const text = xml.endsWith('\n') ? xml : `${xml}\n`;
   if (raw.output === undefined) {
     stdout.write(text);

@@ -90,7 +90,7 @@ function buildProgram(io: Required<Pick<RunOptions, 'stdout' | 'stderr'>>, optio
 
   program
     .command('export-mitsuba')
-    .description('convert a scene to a Mitsuba 3 XML scene (stdout unless -o)')
+    .description('convert a scene to a Mitsuba 3 XML scene (stdout unless -o; meshes and baked textures are written beside it)')
     .argument('<scene>', 'scene file (JSON)')
     .option('-o, --output <file>', 'XML output file')
     .option('--spp <n>', 'sampler sample count')

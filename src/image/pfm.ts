@@ -42,6 +42,29 @@ export function encodePfm(width: number, height: number, rgba: Float32Array): Ui
 }
 
 /**
+ * Encodes float32 values of 1 or 3 channels (rows top to bottom) as a PFM:
+ * greyscale `Pf` for one channel, colour `PF` for three, little-endian,
+ * rows from the bottom up. The Mitsuba exporter's baked textures: Mitsuba's
+ * `bitmap` reads a `Pf` file as a one-channel texture.
+ */
+export function encodePfmChannels(width: number, height: number, channels: 1 | 3, values: Float32Array): Uint8Array<ArrayBuffer> {
+  checkSize(width, height);
+  if (values.length !== width * height * channels) {
+    throw new RangeError(`encodePfmChannels: expected ${width * height * channels} floats, got ${values.length}`);
+  }
+  const header = new TextEncoder().encode(`${channels === 3 ? 'PF' : 'Pf'}\n${width} ${height}\n-1.0\n`);
+  const rowFloats = width * channels;
+  const bytes = new Uint8Array(header.length + width * height * channels * 4);
+  bytes.set(header, 0);
+  const body = new DataView(bytes.buffer, header.length);
+  for (let fileRow = 0; fileRow < height; fileRow++) {
+    const src = (height - 1 - fileRow) * rowFloats;
+    for (let i = 0; i < rowFloats; i++) body.setFloat32((fileRow * rowFloats + i) * 4, values[src + i], true);
+  }
+  return bytes;
+}
+
+/**
  * Decodes a PFM (colour `PF` or greyscale `Pf`, either byte order) into RGB
  * float32 rows top to bottom. Greyscale values are copied to all three channels.
  */

@@ -38,7 +38,7 @@ export async function readSceneFiles(scene: Scene, sceneFile: string): Promise<S
   return { files, assets };
 }
 
-/** Whether the scene names any file. */
+/** Whether the scene names any file (maps, meshes, texture images). */
 export function namesFiles(scene: Scene): boolean {
   return assetReferences(scene).length > 0;
 }

@@ -1,6 +1,6 @@
 /**
  * Export a normalized scene as a Mitsuba 3 XML scene (scene format versions
- * 1 and 2 -> `<scene version="3.0.0">`). Used by `pathtrace export-mitsuba` and by the
+ * 1 to 3 -> `<scene version="3.0.0">`). Used by `pathtrace export-mitsuba` and by the
  * benchmark, which renders the same scene with Mitsuba at equal time.
  *
  * Pure: no DOM, no Node APIs. The mapping, and why each choice matches the
@@ -13,12 +13,21 @@
  * - film: `hdrfilm`, pixel_format rgb, box rfilter (radius 0.5 = uniform jitter
  *   inside the pixel, the format's pixel definition).
  * - integrator: `path`, max_depth = maxBounces + 1, rr_depth > max_depth so
- *   Russian roulette never runs (the references were rendered that way).
+ *   Russian roulette never runs (the references were rendered that way);
+ *   `volpath` (same depths) when a material lets light through anywhere
+ *   (opacity below 1 or an opacity texture): a pass-through of Mitsuba's
+ *   `mask` is then not a bounce, as the format says.
  * - materials: each plugin's own `mitsuba` entry (src/materials/<kind>/kind.ts,
  *   through the registry), one-sided as the format says for spheres and the
  *   ground (Mitsuba's default); on meshes wrapped in `twosided` unless the
  *   material is a solid's boundary.
- * - emission: an `area` emitter on the shape.
+ * - textures: baked into float images (mitsubaTextures.ts) named by
+ *   `texturePath`, which the caller writes (`textures` of exportMitsuba);
+ *   the BSDF inside Mitsuba's `normalmap`, `twosided` and `mask` adapters
+ *   (the registry's materialBsdf). On the ground, `to_uv` first turns the
+ *   rectangle's coordinates into the format's (u, v) = (x, z).
+ * - emission: an `area` emitter on the shape (its radiance a baked texture
+ *   where the color is one), times a constant opacity (see areaEmitter).
  * - environment map: `envmap` with scale = intensity, rotated about +y; the
  *   file name as `environmentMapPath` gives it (default: as in the scene).
  * - meshes: a `ply` shape per mesh whose file `meshPath(i)` names: the
@@ -45,9 +54,15 @@ import { cameraFrame } from './camera';
 import { encodePly } from './mesh/plyEncode';
 import { transformMesh } from './mesh/transform';
 import { lightExtent, lightMitsuba } from '../lights/registry';
-import { materialBsdf, meshBsdf } from '../materials/registry';
+import type { MitsubaTextures } from '../materials/kind';
+import { kindOf, materialBsdf, materialSeeThrough, meshBsdf } from '../materials/registry';
 import { el, float, integer, num, point, rgb, serializeXml, str, triple, type XmlNode } from './mitsubaXml';
+import { MitsubaTextureBaker, type BakedTexture } from './mitsubaTextures';
+import type { TextureImage } from './texture/image';
+import { isTexture } from './texture/texture';
 import type { Camera, Material, Mesh, Scene, TriangleMesh, Vec3 } from './types';
+
+export { bakedTextureFile, type BakedTexture } from './mitsubaTextures';
 
 export { escapeXml } from './mitsubaXml';
 
@@ -65,6 +80,16 @@ export interface MitsubaExportOptions {
   meshPath?: (index: number) => string;
   /** Whether meshes[i]'s file gives vertex normals (smooth); flat meshes get `face_normals`. Default: smooth. */
   meshSmooth?: (index: number) => boolean;
+  /** The scene's decoded texture images by name as written (SceneAssets.images). Required when a material has a texture. */
+  images?: ReadonlyMap<string, TextureImage>;
+  /** The file name to write for a baked texture (`BakedTexture.name`, e.g. resolved beside the XML). Default: the name. */
+  texturePath?: (name: string) => string;
+}
+
+/** An export: the XML, and the baked texture images it names, which the caller writes (`bakedTextureFile`) where `texturePath` says. */
+export interface MitsubaExport {
+  xml: string;
+  textures: BakedTexture[];
 }
 
 /** The PLY bytes the export of meshes[i] refers to: its triangles in world space (`data` is the decoded file). */
@@ -115,11 +140,22 @@ function sensor(camera: Camera, width: number, height: number, spp: number, seed
   ]);
 }
 
-/** The `area` emitter of an emissive material, if any. */
-function areaEmitter(material: Material): XmlNode[] {
+/**
+ * The `area` emitter of an emissive material, if any; a textured emission's
+ * radiance is its baked texture (times color x intensity). Mitsuba adds an
+ * emitter's radiance at every hit, also where `mask` then lets the ray
+ * through, while the format sees emission with probability `opacity`: a
+ * constant opacity multiplies the radiance. (A textured opacity cannot be
+ * multiplied into it: there the export counts the emission in full.)
+ */
+function areaEmitter(material: Material, textures: MitsubaTextures): XmlNode[] {
   const e = material.emission;
-  const radiance = e ? scale3(e.color, e.intensity) : ([0, 0, 0] as Vec3);
-  return isBlack(radiance) ? [] : [el('emitter', { type: 'area' }, [rgb('radiance', radiance)])];
+  if (!e) return [];
+  const opacity = kindOf(material).opacity?.(material) ?? 1;
+  const radiance = scale3(e.color, e.intensity * (isTexture(opacity) ? 1 : opacity));
+  if (isBlack(radiance)) return [];
+  const value = e.texture ? textures.bitmap('radiance', { ...e.texture, scale: radiance }, 'color') : rgb('radiance', radiance);
+  return [el('emitter', { type: 'area' }, [value])];
 }
 
 function environmentEmitter(scene: Scene, opts: MitsubaExportOptions): XmlNode | null {
@@ -136,7 +172,7 @@ function environmentEmitter(scene: Scene, opts: MitsubaExportOptions): XmlNode |
   return isBlack(radiance) ? null : el('emitter', { type: 'constant' }, [rgb('radiance', radiance)]);
 }
 
-function groundShape(scene: Scene): XmlNode | null {
+function groundShape(scene: Scene, baker: MitsubaTextureBaker): XmlNode | null {
   if (!scene.ground) return null;
   const [cx, , cz] = scene.camera.position;
   return el('shape', { type: 'rectangle' }, [
@@ -146,8 +182,29 @@ function groundShape(scene: Scene): XmlNode | null {
       el('rotate', { x: '1', angle: '-90' }),
       el('translate', { value: triple([cx, scene.ground.height, cz]) }),
     ]),
-    materialBsdf(scene.ground.material),
+    materialBsdf(scene.ground.material, baker.forMaterial('ground.material', groundUv(cx, cz))),
   ]);
+}
+
+/**
+ * The to_uv elements that turn the ground rectangle's Mitsuba coordinates
+ * into the format's (u, v) = (x, z): the rectangle maps its [-1, 1]^2 to
+ * uv = ((p + 1) / 2) before to_world, so with the scale, the rotation and
+ * the translation of groundShape, x = cx + G (u_m - 1/2) and z = cz - G (v_m
+ * - 1/2) (G the side). Mitsuba computes u_m in float, so (x, z) are off by
+ * up to about G * 2^-24 * 2 (5e-3 units), as in the references.
+ */
+function groundUv(cx: number, cz: number): XmlNode[] {
+  const side = MITSUBA_GROUND_SIZE;
+  return [
+    el('scale', { x: num(side), y: num(-side) }),
+    el('translate', { x: num(cx - side / 2), y: num(cz + side / 2) }),
+  ];
+}
+
+/** Every material of the scene (ground, spheres, meshes). */
+function sceneMaterials(scene: Scene): Material[] {
+  return [...(scene.ground ? [scene.ground.material] : []), ...scene.spheres.map((s) => s.material), ...scene.meshes.map((m) => m.material)];
 }
 
 /**
@@ -169,47 +226,58 @@ function farClip(scene: Scene): number {
   return Math.max(MITSUBA_DEFAULT_FAR_CLIP, 2 * extent);
 }
 
-/** A Mitsuba 3 XML scene that renders, on average, the image the format defines. */
+/**
+ * A Mitsuba 3 XML scene that renders, on average, the image the format
+ * defines (a textured scene needs the baked images: use exportMitsuba).
+ */
 export function toMitsubaXml(scene: Scene, opts: MitsubaExportOptions = {}): string {
+  return exportMitsuba(scene, opts).xml;
+}
+
+/** A Mitsuba 3 XML scene that renders, on average, the image the format defines, and the texture images it names. */
+export function exportMitsuba(scene: Scene, opts: MitsubaExportOptions = {}): MitsubaExport {
   const width = opts.width ?? scene.image.width;
   const height = opts.height ?? scene.image.height;
   const spp = opts.spp ?? MITSUBA_DEFAULT_SPP;
   const seed = opts.seed ?? 0;
   const maxDepth = scene.render.maxBounces + 1;
+  const baker = new MitsubaTextureBaker(opts.images, opts.texturePath);
+  const integrator = sceneMaterials(scene).some(materialSeeThrough) ? 'volpath' : 'path';
 
   const children: XmlNode[] = [
-    el('integrator', { type: 'path' }, [integer('max_depth', maxDepth), integer('rr_depth', maxDepth + 1)]),
+    el('integrator', { type: integrator }, [integer('max_depth', maxDepth), integer('rr_depth', maxDepth + 1)]),
     sensor(scene.camera, width, height, spp, seed, farClip(scene)),
   ];
   const env = environmentEmitter(scene, opts);
   if (env) children.push(env);
-  const ground = groundShape(scene);
+  const ground = groundShape(scene, baker);
   if (ground) children.push(ground);
   for (const light of scene.lights) children.push(lightMitsuba(light));
-  for (const sphere of scene.spheres) {
+  scene.spheres.forEach((sphere, i) => {
     children.push(
       el('shape', { type: 'sphere' }, [
         point('center', sphere.center),
         float('radius', sphere.radius),
-        materialBsdf(sphere.material),
-        ...areaEmitter(sphere.material),
+        materialBsdf(sphere.material, baker.forMaterial(`spheres[${i}].material`)),
+        ...areaEmitter(sphere.material, baker.forMaterial(`spheres[${i}].material.emission`)),
       ]),
     );
-  }
+  });
   scene.meshes.forEach((mesh, i) => {
     if (!opts.meshPath) throw new Error('toMitsubaXml: the scene has meshes; pass meshPath and write meshPlyFile for each');
-    const bsdf = meshBsdf(mesh.material);
+    const textures = baker.forMaterial(`meshes[${i}].material`);
+    const bsdf = meshBsdf(mesh.material, textures);
     children.push(
       el('shape', { type: 'ply' }, [
         str('filename', opts.meshPath(i)),
         el('boolean', { name: 'face_normals', value: String(!(opts.meshSmooth?.(i) ?? true)) }),
         bsdf,
-        ...areaEmitter(mesh.material),
+        ...areaEmitter(mesh.material, textures),
       ]),
     );
   });
 
   const out = ['<?xml version="1.0" encoding="utf-8"?>', `<!-- Exported by pathtrace from scene format version ${scene.version}. -->`];
   serializeXml(el('scene', { version: '3.0.0' }, children), 0, out);
-  return out.join('\n') + '\n';
+  return { xml: out.join('\n') + '\n', textures: baker.baked };
 }

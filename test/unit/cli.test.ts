@@ -582,6 +582,21 @@ describe('export-mitsuba', () => {
     expect(xml).toMatch(/name="sample_count" value="64"/);
   });
 
+  it('writes the baked textures beside -o, named after it, and refuses stdout for a textured scene', async () => {
+    const piped = await cli(['export-mitsuba', fixture('textured')]);
+    expect(piped.code).toBe(2);
+    expect(piped.stdout.text).toBe('');
+    expect(piped.stderr.lines).toEqual([`${fixture('textured')}: ground.material.baseColor is a texture, which the export bakes into image files beside the XML: pass -o OUT.xml`]);
+    const out = join(dir, 'tex.xml');
+    const { code } = await cli(['export-mitsuba', fixture('textured'), '-o', out]);
+    expect(code).toBe(0);
+    const written = readdirSync(dir).filter((f) => f.endsWith('.pfm')).sort();
+    expect(written).toEqual(['tex-tex0-checker-rgb.pfm', 'tex-tex1-rough-g.pfm', 'tex-tex2-grid-rgb.pfm', 'tex-tex3-rough-b.pfm', 'tex-tex4-bumps-normal.pfm']);
+    const xml = readFileSync(out, 'utf8');
+    for (const file of written) expect(xml).toContain(`<string name="filename" value="${join(dir, file)}"/>`);
+    expect(decodePfm(readFileSync(join(dir, 'tex-tex1-rough-g.pfm'))).width).toBe(128);
+  });
+
   it('rejects a bad scene and a bad output path with exit 2', async () => {
     expect((await cli(['export-mitsuba', join(dir, 'missing.json')])).code).toBe(2);
     expect((await cli(['export-mitsuba', fixture('seed'), '-o', join(dir, 'x', 'y.xml')])).code).toBe(2);
