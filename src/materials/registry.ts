@@ -186,6 +186,12 @@ export function textureSlotDefines(used: readonly string[]): Record<string, numb
   return Object.fromEntries(all.map((name) => [name, used.includes(name) ? 1 : 0]));
 }
 
+/** A material's opacity as a number (a texture's: its scale, the largest it can be). */
+export function materialOpacityFactor(m: Material): number {
+  const opacity = kindOf(m).opacity?.(m) ?? 1;
+  return isTexture(opacity) ? (opacity.scale as number) : opacity;
+}
+
 /** Whether a material lets light through anywhere (opacity below 1, or an opacity texture). */
 export function materialSeeThrough(m: Material): boolean {
   const opacity = kindOf(m).opacity?.(m) ?? 1;
@@ -386,7 +392,15 @@ export function surfaceInputsGlsl(): string {
     });
   const opacity = (k: MaterialKind<Material>) =>
     k.opacity
-      ? [`float o = ${surfaceField(k, 'opacity')};`, `int t = int(${surfaceField(k, textureField('opacity'))});`, 'return t >= 0 ? o * textureScalar(t, uv) : o;']
+      ? [
+          `float o = ${surfaceField(k, 'opacity')};`,
+          // A see-through scene may have no texture (a constant opacity).
+          '#if HAS_TEXTURES',
+          `int t = int(${surfaceField(k, textureField('opacity'))});`,
+          'if (t >= 0) o *= textureScalar(t, uv);',
+          '#endif',
+          'return o;',
+        ]
       : ['return 1.0;'];
   const normalMap = (k: MaterialKind<Material>) => [`return ${k.normalMap ? `int(${surfaceField(k, textureField('normalMap'))})` : '-1'};`];
   const emissionAt = (k: MaterialKind<Material>) =>

@@ -9,7 +9,7 @@
  * (src/lights/registry.ts). Light sampling picks an emitter in proportion
  * to its power through an alias table.
  */
-import { materialFeatures, materialSeeThrough, materialTextures, textureSlotFeatures, packEmitterOnly, packMaterial, type MaterialTexture } from '../materials/registry';
+import { materialFeatures, materialOpacityFactor, materialSeeThrough, materialTextures, textureSlotFeatures, packEmitterOnly, packMaterial, type MaterialTexture } from '../materials/registry';
 import { CHANNELS, type TextureInput } from '../scene/texture/texture';
 import { ATLAS_FORMATS, type AtlasFormat, type Placement } from './textures/atlas';
 import {
@@ -214,8 +214,13 @@ function sceneSpheres(scene: Scene): SceneSphere[] {
   ];
 }
 
+/**
+ * The radiance light sampling sees from a material: its emission where it
+ * is opaque, so times its opacity (the format's o * Le; a hit sees it with
+ * probability o). The material record keeps the emission itself.
+ */
 function emittedRadiance(m: Material): Vec3 {
-  return m.emission ? scale(m.emission.color, m.emission.intensity) : [0, 0, 0];
+  return m.emission ? scale(m.emission.color, m.emission.intensity * materialOpacityFactor(m)) : [0, 0, 0];
 }
 
 /** Emitted power of a sphere: pi * 4 pi r^2 * luminance of its radiance. */

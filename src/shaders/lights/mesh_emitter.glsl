@@ -47,9 +47,12 @@ vec3 sampleMeshEmitter(vec3 x, Emitter e, vec3 u, out float pdf, out float dista
   vec3 direction = toLight / distance;
   float cosLight = abs(dot(direction, surface.shadingNormal));
   pdf = cosLight > 0.0 ? loadMesh(e.primitive).areaPdf / e.pdf * distance * distance / cosLight : 0.0;
-#if HAS_TEXTURED_EMISSION
+#if HAS_TEXTURED_EMISSION || HAS_SEE_THROUGH
+  // The radiance at the point (a textured emission's texture), seen where
+  // the surface is opaque: times its opacity (the format's o * Le, which a
+  // BSDF-sampled hit sees as a pass-through with probability 1 - o).
   Material m = loadMaterial(loadMesh(e.primitive).materialBase + surface.localMaterial);
-  vec3 emitted = materialEmissionAt(m, surface.uv) / slot.w;
+  vec3 emitted = surfaceEmission(m, surface.uv) * materialOpacity(m, surface.uv) / slot.w;
 #else
   vec3 emitted = e.radiance;
 #endif
