@@ -56,7 +56,8 @@ function asTexture(base64: string): LayeredTextureData {
 function bvhProgram(source = bvhGlsl) {
   return kernelProgram(`test/bvh_kernels.frag\n${source}`, () => ({
     fragment: [{ name: 'scene/bvh.glsl', source }, { name: 'test/bvh_kernels.frag', source: kernelFrag }],
-    defines: { ...bvhDefines(), HAS_MESHES: 1 },
+    // bvh.glsl alone: its switches besides HAS_MESHES off (normal maps' derivatives, instances).
+    defines: { ...bvhDefines(), HAS_MESHES: 1, HAS_NORMAL_MAPS: 0 },
   }));
 }
 
