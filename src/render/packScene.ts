@@ -3,10 +3,9 @@
  * Pure: no GL, so it is unit-tested directly.
  *
  * Each sphere light becomes a sphere with an emitter-only material; every
- * sphere whose material emits is also an emitter. Rectangle and disk lights
- * go into the planar-light table (with emitter-only materials), point,
- * spot and directional lights into the emitter table only
- * (src/lights/registry.ts). Light sampling picks an emitter in proportion
+ * sphere whose material emits is also an emitter. Lights of the planar
+ * kinds go into the planar-light table (with emitter-only materials), the
+ * delta kinds into the emitter table only (src/lights/registry.ts). Light sampling picks an emitter in proportion
  * to its power through an alias table.
  */
 import { materialFeatures, materialOpacityFactor, materialSeeThrough, materialTextures, textureSlotFeatures, packEmitterOnly, packMaterial, type MaterialTexture } from '../materials/registry';
@@ -242,7 +241,7 @@ function mapEnvironmentPower(scene: Scene, radius: number, integral = 0): number
 /**
  * The radius of a sphere around the scene's objects and camera (at least
  * 1), about their mean position: what an infinite light's power is
- * measured over (the environment map's, a directional light's).
+ * measured over (the environment map's, and a light's at infinity).
  */
 function sceneRadius(scene: Scene, spheres: readonly SceneSphere[]): number {
   const others = scene.lights.filter((l) => lightSphere(l) === null).flatMap((l) => lightExtent(l) ?? []);

@@ -37,9 +37,9 @@
  * - lights: each kind's own `mitsuba` entry (src/lights/<kind>/kind.ts):
  *   sphere lights a `sphere` with an `area` emitter (one-sided, emitting
  *   along the outward normal: the format's "all outward directions") and a
- *   black `diffuse` BSDF (lights reflect nothing); rectangles and disks the
- *   same on Mitsuba's `rectangle` and `disk`; `point`, `spot` and
- *   `directional` emitters.
+ *   black `diffuse` BSDF (lights reflect nothing); every other kind as its
+ *   plugin exports it (src/lights/<kind>/: Mitsuba's shape with an `area`
+ *   emitter, or its emitter of the same name).
  * - ground: a `rectangle` (normal +z, [-1, 1]^2) scaled to 40000 x 40000,
  *   rotated so its normal is +y, at y = height, centered under the camera
  *   (so a camera far from the origin still sees ground to the horizon; for
