@@ -9,7 +9,7 @@ import { inverseAffine, meshToWorldMatrix } from './mesh/transform';
 import type { Camera, Mesh, Scene, TriangleMesh, Vec3 } from './types';
 import { lightExtent } from '../lights/registry';
 
-/** Radius of the sphere that picks a point or spot light. */
+/** Radius of the sphere that picks a light with no size of its own. */
 export const LIGHT_PICK_RADIUS = 0.1;
 
 export type ObjectKind = 'sphere' | 'light' | 'mesh';
@@ -61,7 +61,7 @@ export function pickObject(scene: Scene, ray: Ray, meshes?: MeshLookup): ObjectH
     if (t !== null && (best === null || t < best.t)) best = { kind, index, t, point: along(ray, t) };
   };
   scene.spheres.forEach((s, i) => consider('sphere', i, s.center, s.radius));
-  // A light is picked by the sphere around it (points and spots: a small one; directional lights are nowhere).
+  // A light is picked by the sphere around it (LIGHT_PICK_RADIUS at least; a light with no extent, none).
   scene.lights.forEach((l, i) => {
     const extent = lightExtent(l);
     if (extent) consider('light', i, extent.center, Math.max(extent.radius, LIGHT_PICK_RADIUS));

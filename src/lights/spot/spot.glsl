@@ -10,14 +10,7 @@ float spotFalloff(SpotLight p, float cosTheta) {
 
 LightSample spotLightSample(Emitter e, vec3 x, vec2 u) {
   SpotLight p = spotLight(e);
-  LightSample s;
-  vec3 toLight = p.position - x;
-  float d2 = dot(toLight, toLight);
-  s.distance = sqrt(d2);
-  s.direction = toLight / s.distance;
-  s.radiance = e.radiance * (spotFalloff(p, -dot(s.direction, p.axis)) / d2);
-  s.pdf = d2 > 0.0 ? 1.0 : 0.0;
-  s.skipSphere = -1;
-  s.delta = true;
+  LightSample s = positionLightSample(p.position, e.radiance, x);
+  s.radiance *= spotFalloff(p, -dot(s.direction, p.axis));
   return s;
 }
