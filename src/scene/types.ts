@@ -153,4 +153,43 @@ export interface TriangleMesh {
    * meshes that need one, which computes MikkTSpace where this has none.
    */
   tangents?: Float32Array | null;
+  /** glTF `COLOR_0` as linear RGB, 3 floats per vertex (white where a primitive has none); null or absent: none. */
+  colors?: Float32Array | null;
+  /** The file's own materials (glTF, OBJ with MTL); absent or null: it has none. */
+  fileMaterials?: FileMaterials | null;
+  /** What the decoder read but ignores (unsupported extensions, a light's `range`...), one line each. */
+  warnings?: string[];
+  /** The file's lights (glTF KHR_lights_punctual) in its object space, like `positions`. */
+  lights?: Light[];
+}
+
+/**
+ * A mesh file's own materials: `materials[triangles[t]]` is triangle t's.
+ * Textures name their images in the file's terms: `#N` is the file's
+ * embedded image N (`images`), any other name a path relative to the mesh
+ * file's folder (an image beside a `.gltf` or an OBJ's MTL, URI-decoded).
+ */
+export interface FileMaterials {
+  materials: FileMaterial[];
+  /** Per triangle, the index of its material in `materials`. */
+  triangles: Uint16Array;
+  /** Images stored in the file (`.glb` buffer views, data URIs), by their `#N` names. */
+  images: ReadonlyMap<string, EmbeddedImage>;
+}
+
+export interface FileMaterial {
+  /** The file's name for it ('' when it has none). */
+  name: string;
+  /** The format's material it maps to (scene-format "glTF materials"; an MTL's keys). */
+  material: Material;
+  /** The texture coordinate set every texture of it reads: 0 (`uvs`) or 1 (`uvs1`). */
+  uvSet: 0 | 1;
+  /** Whether its baseColor is multiplied by the vertex colors (glTF COLOR_0). */
+  vertexColors: boolean;
+}
+
+export interface EmbeddedImage {
+  bytes: Uint8Array;
+  /** As the file declares it (`image/png`, `image/jpeg`, `image/ktx2`...), '' when it does not. */
+  mimeType: string;
 }
