@@ -14,7 +14,7 @@ import { MAX_MESHES } from '../scene/limits';
 import { formatIssue } from '../scene/schema';
 import { encodePly, MESH_EXTENSIONS } from '../scene/mesh';
 import { decodeMeshOffThread } from './meshDecode';
-import type { Mesh, TriangleMesh, Vec3 } from '../scene/types';
+import type { Material, Mesh, TriangleMesh, Vec3 } from '../scene/types';
 import type { App } from './App';
 import { addSphereMaterialControls, type TextureSlots } from './materialControls';
 import { fitMesh, frameCamera, worldBoundingSphere } from './meshFit';
@@ -105,7 +105,7 @@ export function addMeshControls(folder: GUI, app: App, mesh: () => Mesh, tracked
   const triangles = decoded ? (decoded.indices.length / 3).toLocaleString('en-US') : 'not loaded';
   folder.add({ triangles }, 'triangles').name('triangles').disable();
   folder.add({ stored: storedAs(app, app.scene.meshes.indexOf(mesh())) }, 'stored').name('stored').disable();
-  addSphereMaterialControls(folder, app, mesh, tracked, slots);
+  if (mesh().material) addSphereMaterialControls(folder, app, mesh as () => Mesh & { material: Material }, tracked, slots);
   const axis = (label: string, vector: () => Vec3, k: number, range?: [number, number, number]) => {
     const target = {
       get value() { return vector()[k]; },

@@ -81,7 +81,7 @@ export class Panel {
     const light = () => app.scene.lights[s.index];
     const edit = (f: () => void) => app.live(f);
     if (s.kind === 'mesh') {
-      const slots = this.images?.slotsFor((scene) => scene.meshes[s.index]?.material);
+      const slots = this.images?.slotsFor((scene) => scene.meshes[s.index]?.material ?? undefined);
       addMeshControls(folder, app, () => app.scene.meshes[s.index], (c) => this.tracked(c), slots);
     } else if (s.kind === 'sphere') {
       addSphereMaterialControls(folder, app, sphere, (c) => this.tracked(c));

@@ -64,7 +64,7 @@ const MIN_PATHS = 256;
  * budget starts small again when it changes.
  */
 function costKey(scene: Scene): string {
-  const kind = (m: Material) => `${m.type}${m.emission ? '+emission' : ''}`;
+  const kind = (m: Material | null) => (m ? `${m.type}${m.emission ? '+emission' : ''}` : 'file');
   const environment = scene.environment && 'map' in scene.environment ? scene.environment.map : scene.environment !== null;
   return JSON.stringify([
     scene.meshes.map((m) => [m.file, m.position, m.rotation, m.scale, kind(m.material)]),

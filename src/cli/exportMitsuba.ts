@@ -9,7 +9,7 @@
 import { dirname, resolve } from 'node:path';
 import { materialTextures } from '../materials/registry';
 import { bakedTextureFile, exportMitsuba, meshPlyFile, type MitsubaExportOptions } from '../scene/mitsuba';
-import type { Scene } from '../scene/types';
+import { resolveFileMaterials, type RenderScene } from '../scene/fileMaterials';
 import { MAX_IMAGE_SIZE } from '../scene/limits';
 import { MAX_SEED, MAX_SPP, parseInteger, parsePositiveInteger, resolveSize } from './args';
 import { usageError } from './errors';
@@ -45,7 +45,7 @@ function parseExportOptions(raw: RawExportOptions): { spp?: number; seed?: numbe
 }
 
 /** The scene path of the first texture the scene's materials read, if any (`ground.material.baseColor`). */
-function firstTexture(scene: Scene): string | undefined {
+function firstTexture(scene: RenderScene): string | undefined {
   const materials = [...(scene.ground ? [{ path: 'ground.material', material: scene.ground.material }] : []), ...scene.meshes.map((m, i) => ({ path: `meshes[${i}].material`, material: m.material }))];
   for (const { path, material } of materials) {
     const [texture] = materialTextures(material);
@@ -56,7 +56,10 @@ function firstTexture(scene: Scene): string | undefined {
 
 export async function exportMitsubaCommand(file: string, raw: RawExportOptions, stdout: TextSink, stderr: TextSink): Promise<void> {
   const options = parseExportOptions(raw);
-  const scene = await loadSceneFile(file);
+  const sceneModel = await loadSceneFile(file);
+  // Meshes wearing their files' materials become one mesh (one PLY) per material.
+  const loaded = await loadSceneFiles(file, sceneModel);
+  const { scene, assets } = resolveFileMaterials(sceneModel, loaded.assets);
   const textured = firstTexture(scene);
   if (raw.output === undefined && textured !== undefined) {
     throw usageError(`${file}: ${textured} is a texture, which the export bakes into image files beside the XML: pass -o OUT.xml`);
@@ -68,7 +71,6 @@ export async function exportMitsubaCommand(file: string, raw: RawExportOptions, 
   if (options.width !== undefined || options.height !== undefined) {
     Object.assign(exportOptions, resolveSize(scene.image, options));
   }
-  const { assets } = await loadSceneFiles(file, scene);
   const base = raw.output === undefined ? 'scene' : raw.output.replace(/\.xml$/i, '');
   const meshFiles = scene.meshes.map((mesh, i) => ({ path: `${base}-mesh${i}.ply`, data: meshPlyFile(mesh, assets.meshes.get(mesh.file)!) }));
   exportOptions.environmentMapPath = (map) => resolve(dirname(file), map);

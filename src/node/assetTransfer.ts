@@ -66,6 +66,8 @@ export function packAssets(assets: SceneAssets): { manifest: AssetManifest; byte
       return ref;
     }
     if (Array.isArray(value)) return value.map(encode);
+    // A mesh's file materials hold their embedded images in a Map.
+    if (value instanceof Map) return { $map: [...value].map(([k, v]) => [k, encode(v)]) };
     if (value !== null && typeof value === 'object') return Object.fromEntries(Object.entries(value).map(([k, v]) => [k, encode(v)]));
     return value;
   };
@@ -87,6 +89,7 @@ export function unpackAssets(manifest: AssetManifest, block: ArrayBuffer): Scene
   const decode = (value: unknown): unknown => {
     if (Array.isArray(value)) return value.map(decode);
     if (value === null || typeof value !== 'object') return value;
+    if ('$map' in value) return new Map((value as { $map: [string, unknown][] }).$map.map(([k, v]) => [k, decode(v)]));
     if ('$array' in value) {
       const { $array, offset, length } = value as ArrayRef;
       const type = ARRAY_TYPES[$array];

@@ -14,7 +14,9 @@ import { ATLAS_FORMATS, type AtlasFormat, type Placement } from './textures/atla
 import {
   type Light, lightArea, lightEmitted, lightExtent, lightFeatures, lightPower, lightSphere, packEmitter, packLightEmitter, packPlanarLight,
 } from '../lights/registry';
-import type { Material, Scene, Vec3 } from '../scene/types';
+import type { Material, Vec3 } from '../scene/types';
+import { asRenderScene, type RenderScene as Scene } from '../scene/fileMaterials';
+import type { Scene as SceneModel } from '../scene/types';
 import { buildAliasTable } from './aliasTable';
 import type { MeshGroups } from './bvh/groups';
 import { selectCausticGuides, type GuideSphere } from './causticGuides';
@@ -101,7 +103,8 @@ interface SceneSphere extends GuideSphere {
   radiance: Vec3;
 }
 
-export function packScene(scene: Scene, options: PackOptions = {}): PackedScene {
+export function packScene(sceneIn: Scene | SceneModel, options: PackOptions = {}): PackedScene {
+  const scene = asRenderScene(sceneIn, 'packScene');
   const data = new Float32Array(DATA_TEXELS * 4);
   const block = new Float32Array(BLOCK_VEC4S * 4);
   const materials: Float32Array[] = [];

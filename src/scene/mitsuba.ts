@@ -60,7 +60,8 @@ import { el, float, integer, num, point, rgb, serializeXml, str, triple, type Xm
 import { MitsubaTextureBaker, type BakedTexture } from './mitsubaTextures';
 import type { TextureImage } from './texture/image';
 import { isTexture } from './texture/texture';
-import type { Camera, Material, Mesh, Scene, TriangleMesh, Vec3 } from './types';
+import type { Camera, Material, Mesh, Scene as SceneModel, TriangleMesh, Vec3 } from './types';
+import { asRenderScene, type RenderScene as Scene } from './fileMaterials';
 
 export { bakedTextureFile, type BakedTexture } from './mitsubaTextures';
 
@@ -230,12 +231,15 @@ function farClip(scene: Scene): number {
  * A Mitsuba 3 XML scene that renders, on average, the image the format
  * defines (a textured scene needs the baked images: use exportMitsuba).
  */
-export function toMitsubaXml(scene: Scene, opts: MitsubaExportOptions = {}): string {
+export function toMitsubaXml(scene: Scene | SceneModel, opts: MitsubaExportOptions = {}): string {
   return exportMitsuba(scene, opts).xml;
 }
 
+
+
 /** A Mitsuba 3 XML scene that renders, on average, the image the format defines, and the texture images it names. */
-export function exportMitsuba(scene: Scene, opts: MitsubaExportOptions = {}): MitsubaExport {
+export function exportMitsuba(sceneModel: Scene | SceneModel, opts: MitsubaExportOptions = {}): MitsubaExport {
+  const scene = asRenderScene(sceneModel, 'exportMitsuba');
   const width = opts.width ?? scene.image.width;
   const height = opts.height ?? scene.image.height;
   const spp = opts.spp ?? MITSUBA_DEFAULT_SPP;

@@ -60,7 +60,8 @@ function oneOf<T>(choose: (value: Record<string, unknown>) => z.ZodType<T> | str
   });
 }
 /** A material by its `type` (absent = the default kind), through the kinds' registry. */
-const material = oneOf<Material>((value) => (materialSchema(value.type) as z.ZodType<Material> | undefined) ?? UNKNOWN_TYPE_MESSAGE).default(defaultMaterial);
+const anyMaterial = oneOf<Material>((value) => (materialSchema(value.type) as z.ZodType<Material> | undefined) ?? UNKNOWN_TYPE_MESSAGE);
+const material = anyMaterial.default(defaultMaterial);
 const materialKeys = MATERIAL_KEYS;
 
 function isRecord(value: unknown): value is Record<string, unknown> {
@@ -130,7 +131,7 @@ const sphereShape = { center: point(), radius: length(), material: sphereMateria
 const positiveScale = () => z.number().gt(0).max(MAX_COORDINATE);
 const meshShape = {
   file: z.string().min(1, 'must name a file').max(4096),
-  material,
+  material: anyMaterial.optional(),
   position: point().default((): Vec3 => [0, 0, 0]),
   rotation: z
     .tuple([z.number().min(-1e6).max(1e6), z.number().min(-1e6).max(1e6), z.number().min(-1e6).max(1e6)], {
@@ -425,7 +426,7 @@ function copyScene(parsed: ParsedScene): Scene {
     ground: parsed.ground && copyGround(parsed.ground),
     lights: parsed.lights.map(copyLight),
     spheres: parsed.spheres.map(copySphere),
-    meshes: parsed.meshes.map(copyMesh),
+    meshes: parsed.meshes.map((m) => copyMesh(m, parsed.version)),
   };
 }
 
@@ -447,9 +448,10 @@ const copyEnvironment = (e: Environment): Environment =>
     : { color: vec(e.color), intensity: num(e.intensity) };
 const copyGround = (g: Ground): Ground => ({ height: num(g.height), material: copyMaterial(g.material) });
 const copyMaterial = (m: Material): Material => normalizeMaterial(m as unknown as Record<string, unknown>);
-const copyMesh = (m: z.output<z.ZodObject<typeof meshShape>>): Mesh => ({
+/** Without `material`, a version-3 mesh keeps its file's own materials (null); an older one has the default. */
+const copyMesh = (m: z.output<z.ZodObject<typeof meshShape>>, version: number): Mesh => ({
   file: m.file,
-  material: copyMaterial(m.material),
+  material: m.material ? copyMaterial(m.material) : version >= 3 ? null : defaultMaterial(),
   position: vec(m.position),
   rotation: vec(m.rotation),
   scale: typeof m.scale === 'number' ? [m.scale, m.scale, m.scale] : vec(m.scale),

@@ -65,7 +65,8 @@ function environmentJson(e: Environment): NonNullable<SceneJson['environment']> 
 function meshJson(mesh: Mesh) {
   return {
     file: mesh.file,
-    material: materialJson(mesh.material, 2),
+    // Without the key (version 3) the mesh wears its file's own materials.
+    ...(mesh.material ? { material: materialJson(mesh.material, 2) } : {}),
     position: vec(mesh.position),
     rotation: vec(mesh.rotation),
     scale: vec(mesh.scale),

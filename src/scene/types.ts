@@ -78,7 +78,12 @@ export interface Sphere {
 export interface Mesh {
   /** The file, as written in the scene (relative to the scene file's folder). */
   file: string;
-  material: Material;
+  /**
+   * The material of every triangle; null (version 3 without a `material`
+   * key): the file's own materials (glTF's, an OBJ's MTL), or the default
+   * material for a file that has none (fileMaterials.ts resolves it).
+   */
+  material: Material | null;
   position: Vec3;
   /** Degrees about x, then y, then z (world axes). */
   rotation: Vec3;

@@ -49,7 +49,7 @@ export function versionIssues(input: unknown): SceneIssue[] {
 
 /** The least version that can say everything the scene uses. */
 export function requiredVersion(scene: Scene): 1 | 2 | 3 {
-  const materials = [...scene.spheres, ...scene.meshes, ...(scene.ground ? [scene.ground] : [])].map((o) => materialVersion(o.material));
+  const materials = [...scene.spheres, ...scene.meshes, ...(scene.ground ? [scene.ground] : [])].map((o) => (o.material ? materialVersion(o.material) : 3));
   const v2Geometry = scene.meshes.length > 0 || (scene.environment !== null && 'map' in scene.environment);
   const lights = scene.lights.map(lightVersion);
   return Math.max(1, v2Geometry ? 2 : 1, ...materials, ...lights) as 1 | 2 | 3;

@@ -95,7 +95,8 @@ function checkScene(scene: Scene): void {
 
   keys(scene, ['version', 'camera', 'image', 'render', 'environment', 'ground', 'lights', 'spheres', 'meshes'], 'the scene');
   check(scene.version === 1 || scene.version === 2 || scene.version === 3, 'version is 1, 2 or 3');
-  const materials = [...scene.spheres.map((s) => s.material), ...scene.meshes.map((m) => m.material), ...(scene.ground ? [scene.ground.material] : [])];
+  const materials = [...scene.spheres.map((s) => s.material), ...scene.meshes.flatMap((m) => (m.material ? [m.material] : [])), ...(scene.ground ? [scene.ground.material] : [])];
+  if (scene.meshes.some((m) => !m.material)) check(scene.version === 3, "meshes wear their files' materials only in version-3 documents");
   const v2Used = scene.meshes.length > 0 || (scene.environment !== null && 'map' in scene.environment) ||
     materials.some((m) => m.type !== 'standard' || m.emission);
   if (v2Used) check(scene.version >= 2, 'version-2 keys only in version-2 documents');
@@ -147,7 +148,7 @@ function checkScene(scene: Scene): void {
     keys(mesh, ['file', 'material', 'position', 'rotation', 'scale'], `meshes[${i}]`);
     check(typeof mesh.file === 'string' && mesh.file.length > 0, `meshes[${i}].file`);
     check(vec(mesh.position, inBox) && vec(mesh.rotation) && vec(mesh.scale, (x) => x > 0), `meshes[${i}] transform`);
-    material(mesh.material, `meshes[${i}].material`);
+    if (mesh.material) material(mesh.material, `meshes[${i}].material`);
   });
 }
 

@@ -55,9 +55,9 @@ function thrown(run: () => unknown): SceneError {
 }
 
 describe('valid scenes', () => {
-  it('finds the twenty-one fixtures', () => {
+  it('finds the twenty-three fixtures', () => {
     expect(fixtureNames.sort()).toEqual([
-      'bunny', 'conductor', 'emissive', 'emissive-mesh', 'emissive-tilted-normals', 'envmap', 'furnace', 'glass', 'glossy', 'instanced',
+      'bench', 'bunny', 'conductor', 'emissive', 'emissive-mesh', 'emissive-tilted-normals', 'envmap', 'furnace', 'glass', 'glossy', 'gltf-materials', 'instanced',
       'light-directional', 'light-disk', 'light-point', 'light-rectangle', 'light-spot', 'lights', 'mirrors', 'principled', 'seed', 'small-light',
       'textured',
     ]);
@@ -221,7 +221,7 @@ describe('valid scenes', () => {
 
 describe('presets', () => {
   it('are copies of the fixture scenes (all but those that need map or mesh files)', () => {
-    expect([...PRESET_NAMES].sort()).toEqual(fixtureNames.filter((name) => !(['bunny', 'conductor', 'envmap', 'emissive-mesh', 'emissive-tilted-normals', 'instanced', 'lights', 'principled', 'textured'].includes(name) || name.startsWith('light-'))).sort());
+    expect([...PRESET_NAMES].sort()).toEqual(fixtureNames.filter((name) => !(['bench', 'bunny', 'conductor', 'envmap', 'gltf-materials', 'emissive-mesh', 'emissive-tilted-normals', 'instanced', 'lights', 'principled', 'textured'].includes(name) || name.startsWith('light-'))).sort());
     for (const name of PRESET_NAMES) expect(PRESETS[name]).toEqual(fixture(name));
   });
 

@@ -27,7 +27,7 @@ function meshWith(material: Material) {
   return parseScene(serializeScene(scene));
 }
 
-const principled = (): Material => parseScene({ version: 3, camera: { position: [0, 1, 5], target: [0, 1, 0] }, meshes: [{ file: 'b.obj', material: { type: 'principled', baseColor: [0.2, 0.4, 0.6], roughness: 0.3 } }] }).meshes[0].material;
+const principled = (): Material => parseScene({ version: 3, camera: { position: [0, 1, 5], target: [0, 1, 0] }, meshes: [{ file: 'b.obj', material: { type: 'principled', baseColor: [0.2, 0.4, 0.6], roughness: 0.3 } }] }).meshes[0].material!;
 
 describe('texturable controls', () => {
   it('are exactly the inputs each kind takes textures on, with the input they feed', () => {

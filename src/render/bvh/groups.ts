@@ -25,7 +25,10 @@
  * compile no instance code at all.
  */
 import type { SceneAssets } from '../../scene/assets';
-import type { Scene } from '../../scene/types';
+import type { Material } from '../../scene/types';
+
+/** What grouping reads of a scene: each mesh's file and material (null: its file's own, which emit only once resolved). */
+type Scene = { meshes: readonly { file: string; material: Material | null }[] };
 
 /** Instance records (the world group's included): the loop's most iterations per ray. */
 export const MAX_INSTANCES = 8;
@@ -45,7 +48,7 @@ export interface MeshGroups {
 }
 
 const emits = (scene: Scene, i: number) => {
-  const e = scene.meshes[i].material.emission;
+  const e = scene.meshes[i].material?.emission;
   return !!e && e.intensity > 0 && e.color.some((c) => c > 0);
 };
 

@@ -6,7 +6,8 @@
  */
 import type { SceneAssets } from '../../scene/assets';
 import { applyMatrix, meshToWorldMatrix, transformMesh } from '../../scene/mesh';
-import type { Scene, TriangleMesh } from '../../scene/types';
+import type { Scene as SceneModel, TriangleMesh } from '../../scene/types';
+import { resolveFileMaterials, type RenderScene as Scene } from '../../scene/fileMaterials';
 import { groupMeshes, trianglesIn, type BvhMeshInput, type MeshGroups, type PackedBvh } from '../bvh';
 
 export interface WorldMeshes {
@@ -62,7 +63,8 @@ function bvhKey(scene: Scene, groups: MeshGroups): string {
 }
 
 /** The BVH's groups of triangles (see groups.ts): the world group's copies (when any), then each shared file's triangles once. */
-export function bvhInputs(scene: Scene, assets: SceneAssets): BvhMeshInput[][] {
+export function bvhInputs(sceneModel: SceneModel, allAssets: SceneAssets): BvhMeshInput[][] {
+  const { scene, assets } = resolveFileMaterials(sceneModel, allAssets);
   const data = (i: number) => assets.meshes.get(scene.meshes[i].file)!;
   return groupInputs(groupMeshes(scene, trianglesIn(assets)), (i) => transformMesh(data(i), scene.meshes[i]), data);
 }
@@ -90,7 +92,8 @@ export interface PrebuiltBvh {
   packed: PackedBvh;
 }
 
-export function prebuiltBvh(scene: Scene, assets: SceneAssets, packed: PackedBvh): PrebuiltBvh {
+export function prebuiltBvh(sceneModel: SceneModel, allAssets: SceneAssets, packed: PackedBvh): PrebuiltBvh {
+  const { scene, assets } = resolveFileMaterials(sceneModel, allAssets);
   return { key: bvhKey(scene, groupMeshes(scene, trianglesIn(assets))), data: scene.meshes.map((m) => assets.meshes.get(m.file)!), packed };
 }
 

@@ -13,7 +13,8 @@
  * edits re-upload nothing here; map rotation and intensity are uniforms.
  */
 import { buildEnvironmentDistribution, type EnvironmentDistribution } from '../../scene/envmap';
-import type { EnvironmentImage, Scene } from '../../scene/types';
+import type { EnvironmentImage } from '../../scene/types';
+import type { RenderScene as Scene } from '../../scene/fileMaterials';
 import { BVH_TEXTURE_WIDTH, MAX_INSTANCES, buildAndPackGroups } from '../bvh';
 import { emissiveTriangleRecords, instanceRecords } from '../geometry/records';
 import { groupInputs, prebuiltFor, type PrebuiltBvh, type WorldMeshes } from '../geometry/world';

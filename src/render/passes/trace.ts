@@ -1,6 +1,7 @@
 /** The path-tracing pass: adds samples to the running sums in a ping-pong pair. */
 import { type CameraFrame, cameraFrame, inverseViewProjection } from '../../scene/camera';
 import type { Scene } from '../../scene/types';
+import { resolveFileMaterials, type RenderScene } from '../../scene/fileMaterials';
 import { Program } from '../gl/program';
 import { TEXTURE_UNITS } from '../gl/textureUnits';
 import type { PingPong } from '../gl/targets';
@@ -68,7 +69,7 @@ export class TracePass {
   /** Textured emissions' per-triangle means, kept per mesh data and texture (records.ts). */
   private readonly emissionMeans = new WeakMap<object, Map<string, Float32Array>>();
   /** What setScene last uploaded: other passes built from the scene chunks need its camera and features. */
-  private current: { scene: Scene; frame: CameraFrame; width: number; height: number; features: SceneFeatures } | null = null;
+  private current: { scene: RenderScene; frame: CameraFrame; width: number; height: number; features: SceneFeatures } | null = null;
 
   constructor(
     private readonly gl: WebGL2RenderingContext,
@@ -107,10 +108,12 @@ export class TracePass {
    * block, camera to uniforms; the files it names from `assets` (uploaded
    * only when they change). Throws SceneError when a file is not in `assets`.
    */
-  setScene(scene: Scene, assets: SceneAssets, width: number, height: number, bvh?: PrebuiltBvh): void {
+  setScene(sceneModel: Scene, allAssets: SceneAssets, width: number, height: number, bvh?: PrebuiltBvh): void {
     const gl = this.gl;
-    const missing = missingAssets(scene, assets);
+    const missing = missingAssets(sceneModel, allAssets);
     if (missing.length > 0) throw new SceneError(missing);
+    // One material per mesh from here on: meshes wearing their files' materials are split by material.
+    const { scene, assets } = resolveFileMaterials(sceneModel, allAssets);
     const map = scene.environment && 'map' in scene.environment ? assets.maps.get(scene.environment.map)! : null;
     this.assets.setEnvironmentMap(map);
     const world = (this.world = prepareWorldMeshes(scene, assets, this.world));
@@ -137,7 +140,7 @@ export class TracePass {
     }
   }
 
-  private setCameraUniforms(program: Program, scene: Scene, frame: CameraFrame, width: number, height: number): void {
+  private setCameraUniforms(program: Program, scene: RenderScene, frame: CameraFrame, width: number, height: number): void {
     program.use().setUniforms(
       {
         uInverseViewProjection: inverseViewProjection(scene.camera, width / height),

@@ -5,7 +5,7 @@
  * TriangleMesh or throws an AssetError saying what is wrong.
  */
 import { AssetError } from '../assetError';
-import type { TriangleMesh } from '../types';
+import type { FileMaterials, TriangleMesh } from '../types';
 
 export interface RawMesh {
   positions: ArrayLike<number>;
@@ -18,6 +18,10 @@ export interface RawMesh {
   uvs1?: ArrayLike<number> | null;
   /** 4 per vertex (glTF TANGENT, xyz and w), (0, 0, 0, 0) where none is given; null or absent when there is none. */
   tangents?: ArrayLike<number> | null;
+  /** 3 per vertex, linear RGB (glTF COLOR_0); null or absent when there is none. */
+  colors?: ArrayLike<number> | null;
+  /** The file's own materials, `triangles` one entry per triangle of `indices` (compacted with them). */
+  fileMaterials?: (Omit<FileMaterials, 'triangles'> & { triangles: ArrayLike<number> }) | null;
 }
 
 export function finalizeMesh(raw: RawMesh): TriangleMesh {
@@ -31,6 +35,10 @@ export function finalizeMesh(raw: RawMesh): TriangleMesh {
   const uvs = raw.uvs ? checkedUvs(raw.uvs, vertexCount, 'texture coordinate') : null;
   const uvs1 = raw.uvs1 ? checkedUvs(raw.uvs1, vertexCount, 'second texture coordinate (TEXCOORD_1)') : null;
   const tangents = raw.tangents ? normalizedTangents(raw.tangents, vertexCount) : null;
+  const colors = raw.colors ? checkedColors(raw.colors, vertexCount) : null;
+  const own = raw.fileMaterials;
+  if (own && own.triangles.length * 3 !== raw.indices.length) throw new AssetError(`${own.triangles.length} triangle materials for ${raw.indices.length / 3} triangles`);
+  const materialOf = own ? new Uint16Array(own.triangles.length) : null;
   if (raw.indices.length % 3 !== 0) throw new AssetError(`the index count ${raw.indices.length} is not a multiple of 3`);
   const kept = new Uint32Array(raw.indices.length);
   let keptCount = 0;
@@ -44,13 +52,25 @@ export function finalizeMesh(raw: RawMesh): TriangleMesh {
       }
     }
     if (isDegenerate(positions, a, b, c)) continue; // zero area: no surface to hit
+    if (materialOf) materialOf[keptCount / 3] = own!.triangles[t / 3];
     kept[keptCount++] = a;
     kept[keptCount++] = b;
     kept[keptCount++] = c;
   }
   if (raw.indices.length === 0) throw new AssetError('the file has no triangles');
   if (keptCount === 0) throw new AssetError('every triangle of the file has zero area');
-  return { positions, normals, indices: kept.slice(0, keptCount), uvs, uvs1, tangents };
+  const mesh: TriangleMesh = { positions, normals, indices: kept.slice(0, keptCount), uvs, uvs1, tangents };
+  if (colors) mesh.colors = colors;
+  if (own && materialOf) mesh.fileMaterials = { materials: own.materials, images: own.images, triangles: materialOf.slice(0, keptCount / 3) };
+  return mesh;
+}
+
+/** 3 finite floats per vertex. */
+function checkedColors(source: ArrayLike<number>, vertexCount: number): Float32Array {
+  if (source.length !== vertexCount * 3) throw new AssetError(`the file gives ${source.length / 3} vertex colors for ${vertexCount} vertices`);
+  const colors = Float32Array.from(source);
+  for (let i = 0; i < colors.length; i++) if (!Number.isFinite(colors[i])) throw new AssetError(`vertex ${Math.floor(i / 3)} has a non-finite color`);
+  return colors;
 }
 
 /**

@@ -3,30 +3,41 @@
  * glTF-Transform: every triangle primitive (TRIANGLES, TRIANGLE_STRIP,
  * TRIANGLE_FAN) of the default scene (else the first), with its node's world
  * transform applied, merged into one mesh. Smooth when every primitive has
- * NORMAL; texture coordinates TEXCOORD_0 (and TEXCOORD_1) as stored when
- * every primitive has them (normalized integer accessors de-quantized);
- * TANGENT, through the node's matrix, when a primitive of a smooth mesh has
- * it (never computed here: see tangents.ts).
- * Materials, textures, skins and morph targets are ignored.
+ * NORMAL; texture coordinates TEXCOORD_0 and TEXCOORD_1 as stored (normalized
+ * integer accessors de-quantized; zeros for a primitive without them, whose
+ * material then must not be textured); COLOR_0 as linear RGB (white for a
+ * primitive without it); TANGENT, through the node's matrix, when a
+ * primitive of a smooth mesh has it (never computed here: see tangents.ts).
+ * Materials, one per primitive, as gltfMaterials.ts maps them (the file's
+ * materials); KHR_lights_punctual lights placed by their nodes. Skins,
+ * morph targets, cameras and occlusion textures are ignored; extensions the
+ * renderer does not read are listed in the mesh's warnings.
  *
  * A `.gltf` may name external buffers (`"uri": "mesh.bin"`): they are read
  * through `resolveResource` (the CLI resolves them relative to the file);
  * without it, such a file is rejected with an error saying so. External
- * images are never read (materials are ignored).
+ * images are not read here: a texture names its image by its URI (relative
+ * to the file's folder), and the scene's assets read it beside the file.
  */
-import { WebIO, type Document, type Node, type Primitive } from '@gltf-transform/core';
+import { WebIO, type Document, type Material as GltfMaterial, type Node, type Primitive } from '@gltf-transform/core';
 import { KHRONOS_EXTENSIONS } from '@gltf-transform/extensions';
 import { AssetError } from '../assetError';
-import type { TriangleMesh } from '../types';
+import type { EmbeddedImage, FileMaterial, TriangleMesh } from '../types';
 import { finalizeMesh } from './finalize';
+import { checkGltfReferences, ignoredExtensions } from './gltfChecks';
+import { gltfLights } from './gltfLights';
+import { gltfDefaultMaterial, mapGltfMaterial } from './gltfMaterials';
 import { applyMatrix, applyMatrixToTangents, type Mat4 } from './transform';
 
 export type ResourceResolver = (uri: string) => Promise<Uint8Array>;
 
-type GltfJson = {
+export type GltfJson = {
   extensionsUsed?: string[];
   buffers?: { uri?: string }[];
-  images?: { uri?: string }[];
+  images?: { uri?: string; mimeType?: string; bufferView?: number }[];
+  textures?: { source?: number; extensions?: Record<string, unknown> }[];
+  materials?: Record<string, unknown>[];
+  meshes?: { primitives?: Record<string, unknown>[] }[];
 };
 
 const DRACO = 'KHR_draco_mesh_compression';
@@ -58,12 +69,15 @@ async function createIO(json: GltfJson): Promise<WebIO> {
 
 export async function decodeGltf(bytes: Uint8Array, binary: boolean, resolveResource?: ResourceResolver): Promise<TriangleMesh> {
   let document: Document;
+  let json: GltfJson;
   try {
     if (binary) {
-      const json = glbJson(bytes);
+      json = glbJson(bytes);
+      checkGltfReferences(json);
       document = await (await createIO(json)).readBinary(bytes);
     } else {
-      const json = parseJson(bytes);
+      json = parseJson(bytes);
+      checkGltfReferences(json);
       const resources = await externalResources(json, resolveResource);
       document = await (await createIO(json)).readJSON({ json: json as never, resources });
     }
@@ -71,7 +85,14 @@ export async function decodeGltf(bytes: Uint8Array, binary: boolean, resolveReso
     if (error instanceof AssetError) throw error;
     throw new AssetError(`not a valid glTF file: ${(error as Error).message}`);
   }
-  return collectTriangles(document);
+  const warnings: string[] = [];
+  const ignored = ignoredExtensions(json);
+  if (ignored.length > 0) warnings.push(`ignores the glTF extensions ${ignored.join(', ')}`);
+  const mesh = collectTriangles(document, warnings);
+  const lights = gltfLights(document, warnings);
+  if (lights.length > 0) mesh.lights = lights;
+  if (warnings.length > 0) mesh.warnings = warnings;
+  return mesh;
 }
 
 function parseJson(bytes: Uint8Array): GltfJson {
@@ -103,7 +124,7 @@ async function externalResources(json: GltfJson, resolve?: ResourceResolver): Pr
     try {
       resources[buffer.uri] = new Uint8Array(await resolve(buffer.uri));
     } catch (error) {
-      throw new AssetError(`cannot read the glTF's buffer "${buffer.uri}": ${(error as Error).message}`);
+      throw new AssetError(`its buffer "${buffer.uri}" is missing (${(error as Error).message}): a .gltf needs its .bin beside it`);
     }
   }
   return resources;
@@ -113,35 +134,134 @@ const TRIANGLES = 4;
 const TRIANGLE_STRIP = 5;
 const TRIANGLE_FAN = 6;
 
-function collectTriangles(document: Document): TriangleMesh {
+interface PlacedPrimitive {
+  primitive: Primitive;
+  matrix: Mat4;
+  /** `meshes[m].primitives[p]`, for messages. */
+  where: string;
+}
+
+function collectTriangles(document: Document, warnings: string[]): TriangleMesh {
   const root = document.getRoot();
   const scene = root.getDefaultScene() ?? root.listScenes()[0];
   if (!scene) throw new AssetError('the glTF has no scene');
-  const primitives: { primitive: Primitive; matrix: Mat4 }[] = [];
+  const meshes = root.listMeshes();
+  const primitives: PlacedPrimitive[] = [];
   scene.traverse((node: Node) => {
     const mesh = node.getMesh();
     if (!mesh) return;
-    for (const primitive of mesh.listPrimitives()) {
-      if ([TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN].includes(primitive.getMode())) primitives.push({ primitive, matrix: node.getWorldMatrix() as unknown as Mat4 });
-    }
+    mesh.listPrimitives().forEach((primitive, p) => {
+      if ([TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN].includes(primitive.getMode())) {
+        primitives.push({ primitive, matrix: node.getWorldMatrix() as unknown as Mat4, where: `meshes[${meshes.indexOf(mesh)}].primitives[${p}]` });
+      }
+    });
   });
   if (primitives.length === 0) throw new AssetError('the file has no triangles (no triangle primitive in its scene)');
   const every = (semantic: string) => primitives.every(({ primitive }) => primitive.getAttribute(semantic) !== null);
+  const some = (semantic: string) => primitives.some(({ primitive }) => primitive.getAttribute(semantic) !== null);
   const smooth = every('NORMAL');
   const positions: number[] = [];
   const normals: number[] | null = smooth ? [] : null;
-  const uvs: number[] | null = every('TEXCOORD_0') ? [] : null;
-  const uvs1: number[] | null = every('TEXCOORD_1') ? [] : null;
+  const uvs: number[] | null = some('TEXCOORD_0') ? [] : null;
+  const uvs1: number[] | null = some('TEXCOORD_1') ? [] : null;
+  const colors: number[] | null = some('COLOR_0') ? [] : null;
   // glTF ignores TANGENT without NORMAL; primitives without one get zeros (none given).
-  const tangents: number[] | null = smooth && primitives.some(({ primitive }) => primitive.getAttribute('TANGENT') !== null) ? [] : null;
+  const tangents: number[] | null = smooth && some('TANGENT') ? [] : null;
   const indices: number[] = [];
-  for (const { primitive, matrix } of primitives) {
-    appendPrimitive(primitive, matrix, positions, normals, indices);
+  const materials = fileMaterialTable(document, warnings, !!colors);
+  const triangleMaterials: number[] = [];
+  for (const placed of primitives) {
+    const { primitive, matrix } = placed;
+    const before = indices.length;
+    appendPrimitive(placed, positions, normals, indices);
+    const material = materials.indexOf(primitive.getMaterial());
+    for (let t = before; t < indices.length; t += 3) triangleMaterials.push(material);
     if (tangents) appendTangents(primitive, matrix, tangents);
     if (uvs) appendVec2s(primitive, 'TEXCOORD_0', uvs);
     if (uvs1) appendVec2s(primitive, 'TEXCOORD_1', uvs1);
+    if (colors) appendColors(primitive, colors);
+    checkCoordinates(placed, materials.get(material));
   }
-  return finalizeMesh({ positions, normals, indices, uvs, uvs1, tangents });
+  const fileMaterials = materials.used() ? { materials: materials.list(), images: materials.images(), triangles: triangleMaterials } : null;
+  return finalizeMesh({ positions, normals, indices, uvs, uvs1, tangents, colors, fileMaterials });
+}
+
+/** A textured material needs the coordinate set it reads on every primitive that wears it. */
+function checkCoordinates({ primitive, where }: PlacedPrimitive, material: FileMaterial): void {
+  const semantic = `TEXCOORD_${material.uvSet}`;
+  if (!primitive.getAttribute(semantic) && textureImages(material).length > 0) {
+    throw new AssetError(`${where} has no ${semantic}, which its material ${JSON.stringify(material.name)} needs for its textures`);
+  }
+}
+
+/** The images a file material's textures name. */
+function textureImages(material: FileMaterial): string[] {
+  const out: string[] = [];
+  JSON.stringify(material.material, (key, value) => {
+    if (key === 'image' && typeof value === 'string') out.push(value);
+    return value;
+  });
+  return out;
+}
+
+/**
+ * The file's materials, mapped when a primitive first wears one; index
+ * `materials.length` of the file is glTF's default material, for
+ * primitives with none. The embedded images their textures name.
+ */
+function fileMaterialTable(document: Document, warnings: string[], vertexColors: boolean) {
+  const gltfMaterials = document.getRoot().listMaterials();
+  const textures = document.getRoot().listTextures();
+  const mapped = new Map<number, FileMaterial>();
+  const get = (index: number): FileMaterial => {
+    let material = mapped.get(index);
+    if (!material) {
+      const source = gltfMaterials[index];
+      const where = source ? `materials[${index}]${source.getName() ? ` ${JSON.stringify(source.getName())}` : ''}` : '';
+      material = source ? mapGltfMaterial(document, source, where, (m) => warnings.push(m)) : gltfDefaultMaterial();
+      material.vertexColors = vertexColors;
+      mapped.set(index, material);
+    }
+    return material;
+  };
+  return {
+    indexOf: (m: GltfMaterial | null) => {
+      const index = m ? gltfMaterials.indexOf(m) : gltfMaterials.length;
+      get(index);
+      return index;
+    },
+    get,
+    /** Whether the file has materials of its own (a file without any keeps the scene's default). */
+    used: () => gltfMaterials.length > 0,
+    /** Every material, in the file's order (the default last); unused ones are mapped too, so indices stay the file's. */
+    list: () => [...gltfMaterials.map((_, i) => get(i)), get(gltfMaterials.length)],
+    images: (): Map<string, EmbeddedImage> => {
+      const images = new Map<string, EmbeddedImage>();
+      for (const m of mapped.values()) {
+        for (const name of textureImages(m)) {
+          const texture = name.startsWith('#') ? textures[Number(name.slice(1))] : undefined;
+          if (texture) images.set(name, { bytes: texture.getImage() ?? new Uint8Array(0), mimeType: texture.getMimeType() });
+        }
+      }
+      return images;
+    },
+  };
+}
+
+/** A primitive's COLOR_0 (VEC3 or VEC4, floats or normalized integers) as RGB, or white when it has none. */
+function appendColors(primitive: Primitive, out: number[]): void {
+  const accessor = primitive.getAttribute('COLOR_0');
+  const count = primitive.getAttribute('POSITION')!.getCount();
+  if (!accessor) {
+    for (let i = 0; i < count * 3; i++) out.push(1);
+    return;
+  }
+  if (accessor.getCount() !== count) throw new AssetError(`a glTF primitive has ${accessor.getCount()} COLOR_0 for ${count} vertices`);
+  const element = [0, 0, 0, 0];
+  for (let i = 0; i < count; i++) {
+    accessor.getElement(i, element); // de-quantizes normalized integer data
+    out.push(element[0], element[1], element[2]);
+  }
 }
 
 /** A primitive's TANGENT (xyz, w) through its node's matrix, or zeros (none given) for each vertex when it has none. */
@@ -166,8 +286,12 @@ function appendTangents(primitive: Primitive, matrix: Mat4, out: number[]): void
 
 /** A primitive's texture coordinates as stored (normalized integers de-quantized), one pair per vertex of its POSITION. */
 function appendVec2s(primitive: Primitive, semantic: string, out: number[]): void {
-  const accessor = primitive.getAttribute(semantic)!;
+  const accessor = primitive.getAttribute(semantic);
   const count = primitive.getAttribute('POSITION')!.getCount();
+  if (!accessor) {
+    for (let i = 0; i < count * 2; i++) out.push(0); // untextured (checkCoordinates)
+    return;
+  }
   if (accessor.getCount() !== count) throw new AssetError(`a glTF primitive has ${accessor.getCount()} ${semantic} for ${count} vertices`);
   const element = [0, 0];
   for (let i = 0; i < count; i++) {
@@ -176,9 +300,9 @@ function appendVec2s(primitive: Primitive, semantic: string, out: number[]): voi
   }
 }
 
-function appendPrimitive(primitive: Primitive, matrix: Mat4, positions: number[], normals: number[] | null, indices: number[]): void {
+function appendPrimitive({ primitive, matrix, where }: PlacedPrimitive, positions: number[], normals: number[] | null, indices: number[]): void {
   const position = primitive.getAttribute('POSITION');
-  if (!position) throw new AssetError('a glTF triangle primitive has no POSITION');
+  if (!position) throw new AssetError(`${where} has no POSITION`);
   const base = positions.length / 3;
   const count = position.getCount();
   const local = readVec3s(position);
@@ -186,7 +310,7 @@ function appendPrimitive(primitive: Primitive, matrix: Mat4, positions: number[]
   const world = applyMatrix(matrix, local, normal);
   for (let i = 0; i < count * 3; i++) positions.push(world.positions[i]);
   if (normals && world.normals) for (let i = 0; i < count * 3; i++) normals.push(world.normals[i] ?? 0);
-  const order = primitiveIndices(primitive, count);
+  const order = primitiveIndices(primitive, count, where);
   // A mirroring node transform flips the winding; glTF says to flip it back.
   const flip = world.mirrored;
   for (let t = 0; t + 2 < order.length; t += 3) {
@@ -207,11 +331,11 @@ function readVec3s(accessor: NonNullable<ReturnType<Primitive['getAttribute']>>)
 }
 
 /** Triangle list indices (3 per triangle) for any triangle mode; out-of-range indices are left for finalizeMesh. */
-function primitiveIndices(primitive: Primitive, vertexCount: number): number[] {
+function primitiveIndices(primitive: Primitive, vertexCount: number, where: string): number[] {
   const accessor = primitive.getIndices();
   const raw = accessor ? Array.from(accessor.getArray() ?? []) : Array.from({ length: vertexCount }, (_, i) => i);
   for (const index of raw) {
-    if (index >= vertexCount) throw new AssetError(`a glTF primitive references vertex ${index}, but it has ${vertexCount} vertices`);
+    if (index >= vertexCount) throw new AssetError(`${where}: an index references vertex ${index}, but the primitive has ${vertexCount} vertices`);
   }
   const mode = primitive.getMode();
   if (mode === TRIANGLES) return raw.slice(0, raw.length - (raw.length % 3));
