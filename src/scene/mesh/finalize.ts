@@ -1,11 +1,13 @@
 /**
  * The checks every mesh decoder ends with: finite vertices, normals,
- * texture coordinates and tangents (one per vertex), indices in range, degenerate (zero-area) triangles dropped, at least one
- * triangle left. Decoders build raw arrays; this turns them into a
- * TriangleMesh or throws an AssetError saying what is wrong.
+ * texture coordinates and tangents (one per vertex), indices in range,
+ * degenerate (zero-area) triangles dropped (with their entries of the
+ * per-triangle material indices), at least one triangle left. Decoders build
+ * raw arrays; this turns them into a TriangleMesh or throws an AssetError
+ * saying what is wrong.
  */
 import { AssetError } from '../assetError';
-import type { TriangleMesh } from '../types';
+import type { FileMaterials, TriangleMesh } from '../types';
 
 export interface RawMesh {
   positions: ArrayLike<number>;
@@ -18,6 +20,8 @@ export interface RawMesh {
   uvs1?: ArrayLike<number> | null;
   /** 4 per vertex (glTF TANGENT, xyz and w), (0, 0, 0, 0) where none is given; null or absent when there is none. */
   tangents?: ArrayLike<number> | null;
+  /** The file's materials, `triangles` one per triangle of `indices`: the output keeps the entries of the triangles it keeps. */
+  fileMaterials?: FileMaterials | null;
 }
 
 export function finalizeMesh(raw: RawMesh): TriangleMesh {
@@ -32,6 +36,7 @@ export function finalizeMesh(raw: RawMesh): TriangleMesh {
   const uvs1 = raw.uvs1 ? checkedUvs(raw.uvs1, vertexCount, 'second texture coordinate (TEXCOORD_1)') : null;
   const tangents = raw.tangents ? normalizedTangents(raw.tangents, vertexCount) : null;
   if (raw.indices.length % 3 !== 0) throw new AssetError(`the index count ${raw.indices.length} is not a multiple of 3`);
+  const materials = raw.fileMaterials ? checkedTriangleMaterials(raw.fileMaterials, raw.indices.length / 3) : null;
   const kept = new Uint32Array(raw.indices.length);
   let keptCount = 0;
   for (let t = 0; t < raw.indices.length; t += 3) {
@@ -44,13 +49,26 @@ export function finalizeMesh(raw: RawMesh): TriangleMesh {
       }
     }
     if (isDegenerate(positions, a, b, c)) continue; // zero area: no surface to hit
+    if (materials) materials[keptCount / 3] = materials[t / 3]; // keptCount / 3 <= t / 3: read before it is overwritten
     kept[keptCount++] = a;
     kept[keptCount++] = b;
     kept[keptCount++] = c;
   }
   if (raw.indices.length === 0) throw new AssetError('the file has no triangles');
   if (keptCount === 0) throw new AssetError('every triangle of the file has zero area');
-  return { positions, normals, indices: kept.slice(0, keptCount), uvs, uvs1, tangents };
+  const mesh: TriangleMesh = { positions, normals, indices: kept.slice(0, keptCount), uvs, uvs1, tangents };
+  if (materials) mesh.fileMaterials = { ...raw.fileMaterials!, triangles: materials.slice(0, keptCount / 3) };
+  return mesh;
+}
+
+/** A copy of the per-triangle material indices (compacted in place as triangles are dropped), checked against the triangle and material counts. */
+function checkedTriangleMaterials(fileMaterials: FileMaterials, triangleCount: number): Uint16Array {
+  const { triangles, materials } = fileMaterials;
+  if (triangles.length !== triangleCount) throw new AssetError(`the file gives materials for ${triangles.length} of its ${triangleCount} triangles`);
+  for (let t = 0; t < triangles.length; t++) {
+    if (triangles[t] >= materials.length) throw new AssetError(`triangle ${t} has material ${triangles[t]}, but the file has ${materials.length} materials`);
+  }
+  return Uint16Array.from(triangles);
 }
 
 /**
