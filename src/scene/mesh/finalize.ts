@@ -1,8 +1,10 @@
 /**
  * The checks every mesh decoder ends with: finite vertices, normals,
- * texture coordinates and tangents (one per vertex), indices in range, degenerate (zero-area) triangles dropped, at least one
- * triangle left. Decoders build raw arrays; this turns them into a
- * TriangleMesh or throws an AssetError saying what is wrong.
+ * texture coordinates and tangents (one per vertex), indices in range,
+ * degenerate (zero-area) triangles dropped (with their entries of the
+ * per-triangle material indices), at least one triangle left. Decoders build
+ * raw arrays; this turns them into a TriangleMesh or throws an AssetError
+ * saying what is wrong.
  */
 import { AssetError } from '../assetError';
 import type { FileMaterials, TriangleMesh } from '../types';
@@ -21,8 +23,10 @@ export interface RawMesh {
   /** 3 per vertex, linear RGB (glTF COLOR_0); null or absent when there is none. */
   colors?: ArrayLike<number> | null;
   /** The file's own materials, `triangles` one entry per triangle of `indices` (compacted with them). */
-  fileMaterials?: (Omit<FileMaterials, 'triangles'> & { triangles: ArrayLike<number> }) | null;
+  fileMaterials?: RawFileMaterials | null;
 }
+
+type RawFileMaterials = Omit<FileMaterials, 'triangles'> & { triangles: ArrayLike<number> };
 
 export function finalizeMesh(raw: RawMesh): TriangleMesh {
   const vertexCount = Math.floor(raw.positions.length / 3);
@@ -36,10 +40,8 @@ export function finalizeMesh(raw: RawMesh): TriangleMesh {
   const uvs1 = raw.uvs1 ? checkedUvs(raw.uvs1, vertexCount, 'second texture coordinate (TEXCOORD_1)') : null;
   const tangents = raw.tangents ? normalizedTangents(raw.tangents, vertexCount) : null;
   const colors = raw.colors ? checkedColors(raw.colors, vertexCount) : null;
-  const own = raw.fileMaterials;
-  if (own && own.triangles.length * 3 !== raw.indices.length) throw new AssetError(`${own.triangles.length} triangle materials for ${raw.indices.length / 3} triangles`);
-  const materialOf = own ? new Uint16Array(own.triangles.length) : null;
   if (raw.indices.length % 3 !== 0) throw new AssetError(`the index count ${raw.indices.length} is not a multiple of 3`);
+  const materials = raw.fileMaterials ? checkedTriangleMaterials(raw.fileMaterials, raw.indices.length / 3) : null;
   const kept = new Uint32Array(raw.indices.length);
   let keptCount = 0;
   for (let t = 0; t < raw.indices.length; t += 3) {
@@ -52,7 +54,7 @@ export function finalizeMesh(raw: RawMesh): TriangleMesh {
       }
     }
     if (isDegenerate(positions, a, b, c)) continue; // zero area: no surface to hit
-    if (materialOf) materialOf[keptCount / 3] = own!.triangles[t / 3];
+    if (materials) materials[keptCount / 3] = materials[t / 3]; // keptCount / 3 <= t / 3: read before it is overwritten
     kept[keptCount++] = a;
     kept[keptCount++] = b;
     kept[keptCount++] = c;
@@ -61,7 +63,7 @@ export function finalizeMesh(raw: RawMesh): TriangleMesh {
   if (keptCount === 0) throw new AssetError('every triangle of the file has zero area');
   const mesh: TriangleMesh = { positions, normals, indices: kept.slice(0, keptCount), uvs, uvs1, tangents };
   if (colors) mesh.colors = colors;
-  if (own && materialOf) mesh.fileMaterials = { materials: own.materials, images: own.images, triangles: materialOf.slice(0, keptCount / 3) };
+  if (materials) mesh.fileMaterials = { ...raw.fileMaterials!, triangles: materials.slice(0, keptCount / 3) };
   return mesh;
 }
 
@@ -71,6 +73,16 @@ function checkedColors(source: ArrayLike<number>, vertexCount: number): Float32A
   const colors = Float32Array.from(source);
   for (let i = 0; i < colors.length; i++) if (!Number.isFinite(colors[i])) throw new AssetError(`vertex ${Math.floor(i / 3)} has a non-finite color`);
   return colors;
+}
+
+/** A copy of the per-triangle material indices (compacted in place as triangles are dropped), checked against the triangle and material counts. */
+function checkedTriangleMaterials(fileMaterials: RawFileMaterials, triangleCount: number): Uint16Array {
+  const { triangles, materials } = fileMaterials;
+  if (triangles.length !== triangleCount) throw new AssetError(`the file gives materials for ${triangles.length} of its ${triangleCount} triangles`);
+  for (let t = 0; t < triangles.length; t++) {
+    if (triangles[t] >= materials.length) throw new AssetError(`triangle ${t} has material ${triangles[t]}, but the file has ${materials.length} materials`);
+  }
+  return Uint16Array.from(triangles);
 }
 
 /**

@@ -20,7 +20,11 @@ export { meshTangents } from './tangents';
 export const MESH_EXTENSIONS = ['.obj', '.ply', '.gltf', '.glb'] as const;
 
 export interface DecodeMeshOptions {
-  /** Reads a `.gltf`'s external buffer by its URI; without it such files are rejected. */
+  /**
+   * Reads a file beside the mesh by its URI (relative to the mesh file's folder, percent-encoded): a `.gltf`'s
+   * external buffers (without it such files are rejected) and an OBJ's MTL files (without it, or when one cannot be
+   * read, the OBJ loads with a warning and the default material).
+   */
   resolveResource?: ResourceResolver;
 }
 
@@ -28,7 +32,7 @@ export async function decodeMesh(bytes: Uint8Array, fileName: string, options: D
   const extension = /\.[^./\\]+$/.exec(fileName.toLowerCase())?.[0] ?? '';
   if (bytes.length === 0) throw new AssetError('the file is empty');
   switch (extension) {
-    case '.obj': return decodeObj(bytes);
+    case '.obj': return decodeObj(bytes, options.resolveResource);
     case '.ply': return decodePly(bytes);
     case '.gltf': return decodeGltf(bytes, false, options.resolveResource);
     case '.glb': return decodeGltf(bytes, true);
