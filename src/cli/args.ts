@@ -33,6 +33,10 @@ export interface RawRenderOptions {
   denoise?: boolean;
   /** --aov ALBEDO.pfm,NORMAL.pfm */
   aov?: string;
+  /** A model file's glTF camera: --camera (true, the first) or --camera N (src/cli/model.ts). */
+  camera?: string | boolean;
+  /** A model file's environment: --env FILE or --env none (src/cli/model.ts). */
+  env?: string;
 }
 
 /** Where --aov writes the denoiser's guide buffers. */

@@ -4,9 +4,12 @@
  * names are written beside OUT.xml, named after it: `OUT-mesh<i>.ply` per
  * mesh and `OUT-tex<k>-<image>-<use>.pfm` per baked texture (with stdout,
  * meshes go to `scene-mesh<i>.ply` in the working folder; a textured scene
- * needs -o, so that its images have a place beside the XML).
+ * needs -o, so that its images have a place beside the XML), and a page's
+ * bundled map that is not beside the scene as `OUT-NAME.exr`.
  */
+import { existsSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
+import { bundledMapBytes, bundledMapName } from '../app/bundledMaps';
 import { materialTextures } from '../materials/registry';
 import { bakedTextureFile, exportMitsuba, meshPlyFile, type MitsubaExportOptions } from '../scene/mitsuba';
 import { resolveFileMaterials, type RenderScene } from '../scene/fileMaterials';
@@ -54,6 +57,18 @@ function firstTexture(scene: RenderScene): string | undefined {
   return undefined;
 }
 
+/**
+ * A page's bundled map (`bundled/studio.exr`) that is not beside the scene
+ * (the CLI renders it from the bundle: src/node/sceneFiles.ts) is written
+ * beside the XML for Mitsuba, as `OUT-studio.exr`.
+ */
+async function bundledMapCopy(file: string, scene: Scene, base: string): Promise<{ path: string; data: Uint8Array } | undefined> {
+  const map = scene.environment && 'map' in scene.environment ? scene.environment.map : undefined;
+  const name = map === undefined ? null : bundledMapName(map);
+  if (name === null || existsSync(resolve(dirname(file), map!))) return undefined;
+  return { path: `${base}-${name}.exr`, data: await bundledMapBytes(name) };
+}
+
 export async function exportMitsubaCommand(file: string, raw: RawExportOptions, stdout: TextSink, stderr: TextSink): Promise<void> {
   const options = parseExportOptions(raw);
   const sceneModel = await loadSceneFile(file);
@@ -73,7 +88,8 @@ export async function exportMitsubaCommand(file: string, raw: RawExportOptions, 
   }
   const base = raw.output === undefined ? 'scene' : raw.output.replace(/\.xml$/i, '');
   const meshFiles = scene.meshes.map((mesh, i) => ({ path: `${base}-mesh${i}.ply`, data: meshPlyFile(mesh, assets.meshes.get(mesh.file)!) }));
-  exportOptions.environmentMapPath = (map) => resolve(dirname(file), map);
+  const bundledMap = await bundledMapCopy(file, scene, base);
+  exportOptions.environmentMapPath = (map) => (bundledMap ? resolve(bundledMap.path) : resolve(dirname(file), map));
   exportOptions.meshPath = (i) => resolve(meshFiles[i].path);
   exportOptions.meshSmooth = (i) => assets.meshes.get(scene.meshes[i].file)!.normals !== null;
   exportOptions.images = assets.images;
@@ -81,6 +97,7 @@ export async function exportMitsubaCommand(file: string, raw: RawExportOptions, 
   exportOptions.texturePath = (name) => resolve(texturePath(name));
   const { xml, textures } = exportMitsuba(scene, exportOptions);
   for (const mesh of meshFiles) await writeFileAtomic(mesh.path, mesh.data);
+  if (bundledMap) await writeFileAtomic(bundledMap.path, bundledMap.data);
   for (const texture of textures) await writeFileAtomic(texturePath(texture.name), bakedTextureFile(texture));
   const text = xml.endsWith('\n') ? xml : `${xml}\n`;
   if (raw.output === undefined) {

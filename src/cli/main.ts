@@ -1,5 +1,5 @@
 /**
- * The `pathtrace` command line: render, validate and export-mitsuba.
+ * The `pathtrace` command line: render, scene, validate and export-mitsuba.
  *
  * `run(argv, options)` is the whole program as a function: it never calls
  * process.exit, prints nothing but what its streams are given, and returns the
@@ -17,7 +17,9 @@ import { mark } from '../node/timing';
 import { describeError, EXIT_USAGE, oneLine } from './errors';
 import { exportMitsubaCommand, type RawExportOptions } from './exportMitsuba';
 import type { ProgressStream } from './progress';
+import { sceneCommand, type RawSceneOptions } from './model';
 import { renderCommand, type SessionModule } from './render';
+import { MODEL_IMAGE } from '../scene/modelScene';
 import { validateCommand, type TextSink } from './validate';
 
 export interface RunOptions {
@@ -38,6 +40,9 @@ const defaultLoadSession = (): Promise<SessionModule> => {
   enableCompileCache();
   return import('../node/session');
 };
+
+const CAMERA_HELP = "model files: look through the glTF file's camera N (default: its first) instead of the framed default camera";
+const ENV_HELP = 'model files: light with this environment map (.hdr, .exr; intensity 1) instead of the bundled studio map, or none: a uniform white sky';
 
 function buildProgram(io: Required<Pick<RunOptions, 'stdout' | 'stderr'>>, options: RunOptions): Command {
   const program = new Command('pathtrace')
@@ -61,8 +66,8 @@ function buildProgram(io: Required<Pick<RunOptions, 'stdout' | 'stderr'>>, optio
 
   program
     .command('render')
-    .description('render a scene to a PNG (tone-mapped sRGB) and optionally a PFM (linear radiance)')
-    .argument('<scene>', 'scene file (JSON, scene format version 1 or 2)')
+    .description('render a scene, or a model file in a default scene, to a PNG (tone-mapped sRGB) and optionally a PFM (linear radiance)')
+    .argument('<scene>', 'scene file (JSON, scene format version 1 to 3), or a model file (.glb, .gltf, .obj, .ply) to render in a default scene')
     .option('-o, --output <file>', 'PNG output (default: SCENE basename .png in the current directory)')
     .option('--hdr <file>', 'also write linear radiance as PFM')
     .option('--spp <n>', `samples per pixel (default: ${DEFAULT_SPP})`)
@@ -74,10 +79,25 @@ function buildProgram(io: Required<Pick<RunOptions, 'stdout' | 'stderr'>>, optio
     .option('--tonemap <name>', 'tone-mapping operator, e.g. none, aces (default: none)')
     .option('--denoise', "denoise the final image with Open Image Denoise's network: the PNG and --hdr are the denoised image")
     .option('--aov <albedo.pfm,normal.pfm>', "also write the denoiser's guides as PFM: albedo (linear, [0,1]) and normal ([-1,1], zero for the sky)")
+    .option('--camera [n]', CAMERA_HELP)
+    .option('--env <file|none>', ENV_HELP)
     .action(async (scene: string, raw: Record<string, string | undefined>) => {
       mark('cli loaded');
       const session = await loadSession();
       await renderCommand(scene, raw, { session, stderr: io.stderr, cwd: options.cwd, now: options.now });
+    });
+
+  program
+    .command('scene')
+    .description('print the scene `render MODEL` renders for a model file (JSON; paths relative to the current directory, or to -o)')
+    .argument('<model>', 'model file: .glb, .gltf, .obj or .ply')
+    .option('-o, --output <file>', 'write the scene here instead of stdout (its paths relative to this file)')
+    .option('--width <px>', `image width (default: ${MODEL_IMAGE.width}; alone, keeps ${MODEL_IMAGE.width}:${MODEL_IMAGE.height})`)
+    .option('--height <px>', `image height (default: ${MODEL_IMAGE.height}; alone, keeps ${MODEL_IMAGE.width}:${MODEL_IMAGE.height})`)
+    .option('--camera [n]', CAMERA_HELP)
+    .option('--env <file|none>', ENV_HELP)
+    .action(async (model: string, raw: RawSceneOptions) => {
+      await sceneCommand(model, raw, { stdout: io.stdout, stderr: io.stderr, cwd: options.cwd });
     });
 
   program

@@ -1,5 +1,6 @@
 /**
- * `pathtrace render`: parse the flags and the scene, check the output paths,
+ * `pathtrace render`: parse the flags and the scene (a scene file's, or one
+ * made around a model file: model.ts), check the output paths,
  * then drive a headless Chromium session: load, render in chunks sized to
  * take about half a second each (so the progress bar moves and no draw runs
  * long), read back the displayed and linear images, and write PNG / PFM
@@ -17,6 +18,8 @@ import { denoiseFinalImage, readGuides, type DenoiseSession, type Guides } from 
 import { encodePng } from './png';
 import { createProgress, formatRate, type Progress, type ProgressStream } from './progress';
 import { loadSceneFile, loadSceneFiles } from './validate';
+import { checkNoModelOptions, isModelFile, loadModelFiles, loadModelScene, modelScenePath } from './model';
+import type { SceneFiles } from '../node/sceneFiles';
 import { mark } from '../node/timing';
 
 /**
@@ -62,7 +65,7 @@ export interface RenderOutcome {
 export async function renderCommand(sceneFile: string, raw: RawRenderOptions, ctx: RenderContext): Promise<RenderOutcome> {
   mark('render command');
   const args = parseRenderArgs(raw, ctx.session.TONEMAPS);
-  const scene = await loadSceneFile(sceneFile);
+  const { scene, readFiles } = await loadRenderScene(sceneFile, raw, args, ctx.cwd);
   mark('scene parsed');
   const { width, height } = resolveSize(scene.image, args);
   const pngPath = raw.output ?? defaultPngPath(sceneFile, ctx.cwd);
@@ -72,7 +75,7 @@ export async function renderCommand(sceneFile: string, raw: RawRenderOptions, ct
   // first: before a bad output path's, and before any session error.
   let assetsLoading: Promise<SceneAssets> | undefined;
   const loadAssets = () =>
-    (assetsLoading ??= loadSceneFiles(sceneFile, scene).then(({ assets }) => {
+    (assetsLoading ??= readFiles().then(({ assets }) => {
       mark('scene files read');
       return assets;
     }));
@@ -108,6 +111,27 @@ export async function renderCommand(sceneFile: string, raw: RawRenderOptions, ct
   } finally {
     progress.stop();
   }
+}
+
+/**
+ * The scene to render and how to read the files it names: a scene file's,
+ * or for a model file the scene `pathtrace scene` would print in the
+ * current directory (so both render the same), its files named as the user
+ * gave them.
+ */
+async function loadRenderScene(
+  file: string,
+  raw: RawRenderOptions,
+  args: RenderArgs,
+  cwd: string | undefined,
+): Promise<{ scene: Scene; readFiles: () => Promise<SceneFiles> }> {
+  if (!isModelFile(file)) {
+    checkNoModelOptions(file, raw);
+    const scene = await loadSceneFile(file);
+    return { scene, readFiles: () => loadSceneFiles(file, scene) };
+  }
+  const model = await loadModelScene(file, raw, modelScenePath(file, cwd), args);
+  return { scene: model.scene, readFiles: () => loadModelFiles(file, model) };
 }
 
 /** Every output path is writable and names a different file (-o first, then --hdr, then --aov). */

@@ -1,9 +1,11 @@
 /**
  * The files a scene file names (environment maps, meshes), read from disk
- * relative to the scene file's folder, as the format says.
+ * relative to the scene file's folder, as the format says, or the page's
+ * bundled maps (src/app/bundledMaps.ts: pure, no DOM) when not there.
  */
 import { readFile } from 'node:fs/promises';
 import path from 'node:path';
+import { bundledMapBytes, bundledMapName } from '../app/bundledMaps';
 import { assetReferences, type SceneAssets } from '../scene/assets';
 import type { Scene } from '../scene/types';
 
@@ -31,11 +33,26 @@ export async function readSceneFiles(scene: Scene, sceneFile: string): Promise<S
   const folder = path.dirname(path.resolve(sceneFile));
   const files: Record<string, Uint8Array> = {};
   const assets = await loadSceneAssets(scene, async (name) => {
-    const bytes = new Uint8Array(await readFile(path.resolve(folder, name)));
+    const bytes = await readBesideOrBundled(folder, name);
     files[name] = bytes;
     return bytes;
   }, undefined, decodeImage);
   return { files, assets };
+}
+
+/**
+ * A file beside the scene; a page's bundled map (`bundled/studio.exr`) that
+ * is not there comes from the bundle, as on the page, so a scene the page
+ * saved (or `pathtrace scene` wrote) renders here as it is.
+ */
+async function readBesideOrBundled(folder: string, name: string): Promise<Uint8Array> {
+  try {
+    return new Uint8Array(await readFile(path.resolve(folder, name)));
+  } catch (error) {
+    const bundled = (error as NodeJS.ErrnoException).code === 'ENOENT' ? bundledMapName(name) : null;
+    if (bundled === null) throw error;
+    return bundledMapBytes(bundled);
+  }
 }
 
 /** Whether the scene names any file (maps, meshes, texture images). */
