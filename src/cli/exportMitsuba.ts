@@ -62,7 +62,7 @@ function firstTexture(scene: RenderScene): string | undefined {
  * (the CLI renders it from the bundle: src/node/sceneFiles.ts) is written
  * beside the XML for Mitsuba, as `OUT-studio.exr`.
  */
-async function bundledMapCopy(file: string, scene: Scene, base: string): Promise<{ path: string; data: Uint8Array } | undefined> {
+async function bundledMapCopy(file: string, scene: RenderScene, base: string): Promise<{ path: string; data: Uint8Array } | undefined> {
   const map = scene.environment && 'map' in scene.environment ? scene.environment.map : undefined;
   const name = map === undefined ? null : bundledMapName(map);
   if (name === null || existsSync(resolve(dirname(file), map!))) return undefined;
