@@ -17,6 +17,13 @@
 // path rate). On a GPU whose warps retire early it can pay off.
 uniform int uMaxBounces;
 
+// The closest surface along a ray that stops it, and its material. On
+// SwiftShader every call of intersectScene inlines a whole BVH traversal,
+// and a shader's compile time grows faster than its size: so each of these
+// functions has exactly one call site of it, in a loop where the scene has
+// see-through surfaces (measured: a second call site in the pass-through
+// and the shadow loops made a cut-out scene's program compile 10-20x
+// slower).
 #if HAS_SEE_THROUGH
 // Most see-through surfaces a ray or a shadow ray passes before it counts
 // as blocked (a bound for the loops; beyond it the estimate loses energy).
@@ -26,22 +33,25 @@ const int SEE_THROUGH_STEPS = 16;
 // probability 1 - o: the next hit along the same ray replaces it. Not a
 // bounce (Mitsuba's volpath), so a cut-out costs no path depth; emission
 // is then seen with probability o, which is the format's o * Le.
-void passThrough(vec3 direction, uint depth, inout Hit hit, inout Material material) {
+Hit traceThrough(vec3 origin, vec3 direction, uint depth, out Material material) {
+  Hit hit;
   for (int i = 0; i < SEE_THROUGH_STEPS; i++) {
-    if (hit.kind == HIT_NONE) return;
-    float o = materialOpacity(material, hit.uv);
-    if (o >= 1.0 || randEvent(depth * uint(SEE_THROUGH_STEPS) + uint(i)) < o) return;
-    hit = intersectScene(spawnRayOrigin(hit, direction), direction);
+    hit = intersectScene(origin, direction);
     material = loadMaterial(hit.material);
+    if (hit.kind == HIT_NONE) break;
+    float o = materialOpacity(material, hit.uv);
+    if (o >= 1.0 || randEvent(depth * uint(SEE_THROUGH_STEPS) + uint(i)) < o) break;
+    origin = spawnRayOrigin(hit, direction);
   }
+  return hit;
 }
 
 // The fraction of light a shadow ray carries through see-through surfaces
-// before tMax: the product of their 1 - opacity (0: blocked).
+// before tMax: the product of their 1 - opacity (0: blocked). Closest hits
+// only (no any-hit query: one traversal call site, see above).
 float shadowTransmittance(vec3 origin, vec3 direction, float tMax, int skipSphere) {
   float transmitted = 1.0;
   for (int i = 0; i < SEE_THROUGH_STEPS; i++) {
-    if (!occluded(origin, direction, tMax, skipSphere)) return transmitted;
     Hit h = intersectScene(origin, direction);
     // A blocker at or past tMax is the light itself (the any-hit test's rounding).
     if (h.kind == HIT_NONE || h.t >= tMax * 0.9999) return transmitted;
@@ -53,7 +63,11 @@ float shadowTransmittance(vec3 origin, vec3 direction, float tMax, int skipSpher
   return 0.0;
 }
 #else
-void passThrough(vec3 direction, uint depth, inout Hit hit, inout Material material) {}
+Hit traceThrough(vec3 origin, vec3 direction, uint depth, out Material material) {
+  Hit hit = intersectScene(origin, direction);
+  material = loadMaterial(hit.material);
+  return hit;
+}
 float shadowTransmittance(vec3 origin, vec3 direction, float tMax, int skipSphere) {
   return occluded(origin, direction, tMax, skipSphere) ? 0.0 : 1.0;
 }
@@ -141,9 +155,7 @@ vec3 traceRadiance(vec3 direction, Hit hit, Material material, vec3 radiance) {
     // The next vertex, and what it emits towards this one.
     vec3 position = hit.position;
     direction = frame * bs.wi;
-    hit = intersectScene(spawnRayOrigin(hit, direction), direction);
-    material = loadMaterial(hit.material);
-    passThrough(direction, uint(depth + 1), hit, material);
+    hit = traceThrough(spawnRayOrigin(hit, direction), direction, uint(depth + 1), material);
     radiance += throughput * emitted(hit, material, direction, position, bs.isDelta, bs.pdf);
     // Decided here, not at the top: a lane that leaves at the back edge
     // spares the quad a whole masked pass through the body.

@@ -48,9 +48,7 @@ void main() {
       next++;
       vec3 origin;
       generateCameraRay(vec2(pixel), origin, direction);
-      hit = intersectScene(origin, direction);
-      material = loadMaterial(hit.material);
-      passThrough(direction, 0u, hit, material);
+      hit = traceThrough(origin, direction, 0u, material);
       radiance = emitted(hit, material, direction, origin, true, 0.0);
       scattering = uMaxBounces > 0 && scatters(hit, material);
       if (!scattering) accumulate(sum, radiance);
