@@ -18,6 +18,7 @@ import { relativeMse, type LinearImage } from '../src/node/imageMetrics';
 import { openRenderSession, type LoadOptions, type RenderSession } from '../src/node/session';
 import type { SamplerKind } from '../src/render/sampling';
 import { bakedTextureFile, exportMitsuba, meshPlyFile } from '../src/scene/mitsuba';
+import { resolveFileMaterials } from '../src/scene/fileMaterials';
 import type { SceneAssets } from '../src/scene/assets';
 import { parseSceneText } from '../src/scene/schema';
 import { readSceneFiles } from '../src/node/sceneFiles';
@@ -65,6 +66,8 @@ export interface SceneRow {
   height: number;
   maxBounces: number;
   startupSeconds: number;
+  /** GPU bytes of the scene's texture images (the atlas), 0 without textures. */
+  textureBytes: number;
   ours: RendererRun;
   mitsuba?: RendererRun & { cpuSeconds: number[] };
   /** Our relMSE / Mitsuba's at each checkpoint. */
@@ -141,11 +144,11 @@ export async function benchOurs(
   seed: number,
   sampler: SamplerKind,
   files: Record<string, Uint8Array>,
-): Promise<{ run: RendererRun; startupSeconds: number }> {
+): Promise<{ run: RendererRun; startupSeconds: number; textureBytes: number }> {
   // Load and a first draw: shader compile, link and SwiftShader's JIT (timed
   // as startup), then a fresh accumulation on the same context.
   const t0 = performance.now();
-  await session.load(scene, { ...size, seed, sampler } as LoadOptions, files);
+  const loaded = (await session.load(scene, { ...size, seed, sampler } as LoadOptions, files)) as { textureBytes?: number } | undefined;
   await session.render(1);
   const startupSeconds = (performance.now() - t0) / 1000;
   await session.reset();
@@ -177,7 +180,7 @@ export async function benchOurs(
     }
     checkpoints.push({ seconds: elapsed, spp, relMse: score(await readImage(session, size)) });
   }
-  return { run: finishRun(checkpoints, pixels, target, reached), startupSeconds };
+  return { run: finishRun(checkpoints, pixels, target, reached), startupSeconds, textureBytes: loaded?.textureBytes ?? 0 };
 }
 
 async function readImage(session: RenderSession, size: { width: number; height: number }): Promise<LinearImage> {
@@ -185,7 +188,7 @@ async function readImage(session: RenderSession, size: { width: number; height: 
 }
 
 function benchMitsuba(
-  scene: Scene,
+  sceneModel: Scene,
   size: { width: number; height: number },
   score: (image: LinearImage) => number,
   times: number[],
@@ -193,8 +196,10 @@ function benchMitsuba(
   seed: number,
   dir: string,
   sceneFile: string,
-  assets: SceneAssets,
+  allAssets: SceneAssets,
 ): RendererRun & { cpuSeconds: number[] } {
+  // Meshes wearing their files' materials are exported one mesh per material.
+  const { scene, assets } = resolveFileMaterials(sceneModel, allAssets);
   const xml = path.join(dir, 'scene.xml');
   const environmentMapPath = (map: string) => path.resolve(path.dirname(sceneFile), map);
   const meshPath = (i: number) => path.join(dir, `mesh${i}.ply`);
@@ -253,8 +258,8 @@ export async function runBench(options: BenchOptions = {}): Promise<BenchResult>
       const sceneRows: SceneRow[] = [];
       for (const sampler of samplers) {
         log(`${name}: ours (${sampler})...`);
-        const { run, startupSeconds } = await benchOurs(session, scene, size, score, times, target, seed, sampler, files);
-        sceneRows.push({ scene: name, sampler, ...size, maxBounces: scene.render.maxBounces, startupSeconds, ours: run });
+        const { run, startupSeconds, textureBytes } = await benchOurs(session, scene, size, score, times, target, seed, sampler, files);
+        sceneRows.push({ scene: name, sampler, ...size, maxBounces: scene.render.maxBounces, startupSeconds, textureBytes, ours: run });
       }
       if (mitsubaVersion) {
         log(`${name}: Mitsuba...`);
@@ -296,7 +301,7 @@ export function formatRow(row: SceneRow): string {
 /** The table, one row per scene. */
 export function formatTable(result: BenchResult): string {
   const times = result.options.times;
-  const header = ['scene', 'sampler', 'size', 'bounces', 'Mpath/s', ...times.map((t) => `spp@${t}s`), ...times.map((t) => `relMSE@${t}s`), `t(${result.options.target})`];
+  const header = ['scene', 'sampler', 'size', 'bounces', 'tex MB', 'Mpath/s', ...times.map((t) => `spp@${t}s`), ...times.map((t) => `relMSE@${t}s`), `t(${result.options.target})`];
   if (result.mitsubaVersion) {
     header.push('Mi Mpath/s', ...times.map((t) => `Mi relMSE@${t}s`), `Mi t(${result.options.target})`, ...times.map((t) => `ours/Mi@${t}s`));
   }
@@ -307,6 +312,7 @@ export function formatTable(result: BenchResult): string {
       row.sampler,
       `${row.width}x${row.height}`,
       String(row.maxBounces),
+      ((row.textureBytes ?? 0) / 2 ** 20).toFixed(1),
       fmt(row.ours.megaPathsPerSecond),
       ...row.ours.checkpoints.map((c) => String(c.spp)),
       ...row.ours.checkpoints.map((c) => c.relMse.toExponential(2)),

@@ -8,7 +8,7 @@
  */
 import { resolve } from 'node:path';
 import type { RenderSession, SessionOptions } from '../node/session';
-import type { SceneAssets } from '../scene/assets';
+import { meshWarnings, type SceneAssets } from '../scene/assets';
 import type { Scene } from '../scene/types';
 import { parseRenderArgs, resolveSize, type AovPaths, type Budget, type RawRenderOptions, type RenderArgs } from './args';
 import { CliError, EXIT_INTERRUPTED, failure, firstLine, oneLine, usageError } from './errors';
@@ -240,7 +240,8 @@ async function renderImages(
   progress.status('loading scene and compiling the shader...');
   // Decoded here already (loadSceneFiles): the page takes the arrays and does not decode the files again.
   const loaded = await session.load(scene, { width: size.width, height: size.height, seed: args.seed }, {}, assets);
-  const warnings = loaded.warnings ?? [];
+  // What the mesh decoders ignored (a glTF's unread extensions...), then the page's own.
+  const warnings = [...meshWarnings(scene, assets).map((w) => `${w.path}: ${w.message}`), ...(loaded.warnings ?? [])];
   mark('scene loaded in the page');
   progress.start();
   const { spp, seconds } = await renderBudget(session, args.budget, progress, now);
