@@ -8,12 +8,12 @@
  * maximum, samples per second (with the fraction of the sample in progress,
  * where the page tells it) and the render loop's paths per frame. Run after
  * `npm run build:web`:
- *   npx tsx bench/mesh-page-frames.ts [--triangles 1000000] [--seconds 15] [--paused] [--timeline] [--web DIR]
+ *   npx tsx bench/mesh-page-frames.ts [--triangles 1000000 | --file model.glb] [--seconds 15] [--paused] [--timeline] [--web DIR]
  * (--timeline: lists each frame over 100 ms while rendering the mesh, with the frames around it.)
  * (--web: another build's dist/web, to compare.)
  * (--paused: the render is paused while the model loads, to see the page's own work.)
  */
-import { mkdtempSync, writeFileSync } from 'node:fs';
+import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import type { Page } from 'playwright-core';
@@ -83,9 +83,11 @@ async function pathsPerFrame(page: Page): Promise<string> {
 async function main(argv: string[]): Promise<void> {
   const triangles = Number(option(argv, 'triangles', '1000000'));
   const seconds = Number(option(argv, 'seconds', '15'));
-  const ply = Buffer.from(bumpySpherePly(triangles));
-  const file = join(mkdtempSync(join(tmpdir(), 'mesh-frames-')), `sphere-${triangles}.ply`);
-  writeFileSync(file, ply);
+  // --file: a model of one's own (bench.glb: its textures upload too), else the generated sphere.
+  const given = option(argv, 'file', '');
+  const ply = given ? readFileSync(given) : Buffer.from(bumpySpherePly(triangles));
+  const file = given || join(mkdtempSync(join(tmpdir(), 'mesh-frames-')), `sphere-${triangles}.ply`);
+  if (!given) writeFileSync(file, ply);
   const server = await serveDirectory(option(argv, 'web', webRoot()));
   const browser = await launchChromium();
   try {
@@ -111,7 +113,7 @@ async function main(argv: string[]): Promise<void> {
     await page.setInputFiles('#file', file);
     await page.waitForFunction(() => document.body.dataset.meshes === 'building', undefined, { timeout: 300_000 });
     t1 = await now(page);
-    console.log(`opening the ${(ply.length / 2 ** 20).toFixed(1)} MB PLY until its BVH build starts: ${((t1 - t0) / 1000).toFixed(1)} s; ${await gaps(page, t0, t1)}`);
+    console.log(`opening the ${(ply.length / 2 ** 20).toFixed(1)} MB model until its BVH build starts: ${((t1 - t0) / 1000).toFixed(1)} s; ${await gaps(page, t0, t1)}`);
     await page.waitForFunction(() => document.body.dataset.meshes !== 'building', undefined, { timeout: 600_000 });
     if ((await page.evaluate(() => document.body.dataset.meshes)) !== 'ready') throw new Error(`the BVH build failed: ${await page.getByTestId('error').textContent()}`);
     const t2 = await now(page);
