@@ -31,10 +31,12 @@ const INCLUDE = ['test/**/*.test.ts', 'src/**/*.test.ts'];
  * translated shader, not SwiftShader's machine code: no gain measured with a
  * shared profile). So the other files run PARALLEL at a time, each with its
  * own Chromium (one browser would serialize their compiles on its GPU
- * process's one thread): two on this 2-core machine. PATHTRACE_TEST_WORKERS
- * overrides (1 runs every file one at a time, as before).
+ * process's one thread): one per core (two on this 2-core machine), at most
+ * four (each Chromium takes up to ~3 GB compiling). PATHTRACE_TEST_WORKERS
+ * overrides (1 runs every file one at a time, as before: on a machine that
+ * others are using too, their processes take the second core anyway).
  */
-const PARALLEL = Number(process.env.PATHTRACE_TEST_WORKERS) || Math.min(4, Math.max(2, availableParallelism()));
+const PARALLEL = Number(process.env.PATHTRACE_TEST_WORKERS) || Math.min(4, availableParallelism());
 
 const shared = {
   testTimeout: 300_000,
