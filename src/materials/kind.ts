@@ -125,6 +125,12 @@ export interface MaterialKind<M extends MaterialBase = MaterialBase> {
   readonly texturedEmission?: boolean;
   /** Its normal map, when the kind has one (Mitsuba's `normalmap`). */
   readonly normalMap?: (m: M) => Texture | undefined;
+  /**
+   * The vec3 field a mesh's vertex colors multiply (glTF COLOR_0), when the
+   * kind takes them: its base color, after the texture lookup (surface.glsl
+   * evalMaterial). Only file materials turn them on (fileMaterials.ts).
+   */
+  readonly vertexColorKey?: string;
   /** The page's controls for its keys. */
   readonly controls: readonly MaterialControl[];
   /** What switching `current` (of another kind) to this kind gives; the registry keeps the emission. */

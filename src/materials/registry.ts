@@ -430,6 +430,19 @@ export const MATERIAL_CHUNK_GUARDS: ReadonlyMap<string, string> = new Map(KINDS.
 
 const texelNames = (from: number) => Array.from({ length: MATERIAL_TEXELS - from }, (_, i) => `t${i + from}`);
 
+/**
+ * applyVertexColor (compiled only under HAS_VERTEX_COLORS): the kinds with
+ * a vertexColorKey multiply that field by the mesh's interpolated vertex
+ * color; the others ignore it.
+ */
+function vertexColorGlsl(): string {
+  const cases = KINDS.filter((k) => k.vertexColorKey).map((k) => {
+    const field = LAYOUTS.get(k.type)!.fields.find((f) => f.name === k.vertexColorKey)!;
+    return `  if (b.type == MATERIAL_${upperName(k.type)}) ${fieldRead(field, 'b.')} *= color;`;
+  });
+  return `#if HAS_VERTEX_COLORS\n// A mesh's vertex color at the hit multiplied into the kind's base color (glTF COLOR_0).\nvoid applyVertexColor(inout Bsdf b, vec3 color) {\n${cases.join('\n')}\n}\n#endif`;
+}
+
 /** The kind's parameter struct and its reader from a Bsdf's texels. */
 function paramsGlsl(kind: MaterialKind<Material>): string {
   const layout = LAYOUTS.get(kind.type)!;
@@ -462,6 +475,7 @@ export function materialGlsl(): string {
     'bool materialTwoSided(Material m) { return (int(m.t0.w) & MATERIAL_FLAG_TWO_SIDED) != 0; }',
     `struct Bsdf {\n  int type;\n  bool twoSided;\n${texelNames(1).map((t) => `  vec4 ${t};`).join('\n')}\n};`,
     `// The record's constant parameters (surface.glsl's evalMaterial starts from them).\nBsdf bsdfFromRecord(Material m) {\n  Bsdf b;\n  b.type = materialType(m);\n  b.twoSided = materialTwoSided(m);\n${texelNames(1).map((t) => `  b.${t} = m.${t};`).join('\n')}\n  return b;\n}`,
+    vertexColorGlsl(),
     ...KINDS.map(paramsGlsl),
   ].join('\n');
 }

@@ -48,6 +48,8 @@ export interface SceneFeatures {
   normalMaps: boolean;
   /** The texture slots some material uses (registry's textureSlotDefine names): only those are compiled. */
   textureSlots: readonly string[];
+  /** Meshes whose material multiplies its base color by the vertex colors (glTF COLOR_0, fileMaterials.ts): their interpolation at a hit. */
+  vertexColors: boolean;
 }
 
 /** A scene with nothing optional: spheres of the default material under a constant sky. */
@@ -63,6 +65,7 @@ export const BASE_FEATURES: SceneFeatures = {
   seeThrough: false,
   normalMaps: false,
   textureSlots: [],
+  vertexColors: false,
 };
 
 /** What packing needs to know of the scene's decoded files. */
@@ -201,6 +204,7 @@ export function packScene(sceneIn: Scene | SceneModel, options: PackOptions = {}
     seeThrough: sceneMaterials.some(materialSeeThrough),
     normalMaps: sceneMaterials.some((m) => materialTextures(m).some((t) => t.input === 'normal')),
     textureSlots: textureSlotFeatures(sceneMaterials),
+    vertexColors: scene.meshes.some((m) => m.vertexColors === true),
   };
   return { data, block, features, meshMaterials, meshEmitters: meshEmitters.map(({ mesh, first, count }) => ({ mesh, first, count })) };
 }

@@ -104,5 +104,6 @@ export function featureDefines(features: SceneFeatures): Record<string, number> 
     HAS_MESHES: features.meshes ? 1 : 0,
     HAS_EMISSIVE_MESHES: features.emissiveMeshes ? 1 : 0,
     HAS_INSTANCES: features.instances ? 1 : 0,
+    HAS_VERTEX_COLORS: features.vertexColors && features.meshes ? 1 : 0,
   };
 }

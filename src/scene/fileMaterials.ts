@@ -24,10 +24,18 @@ export interface ResolvedMesh extends Mesh {
   material: Material;
   /** The index of the scene mesh it comes from. */
   source: number;
+  /**
+   * Whether its material's base color is multiplied by its file's vertex
+   * colors (a file material with glTF COLOR_0, whose subset has `colors`);
+   * false for a scene's own material, which never uses them.
+   */
+  vertexColors: boolean;
 }
 
+/** A mesh as the renderer takes it: its one material, and whether that multiplies by the vertex colors (absent: no). */
+export type RenderMesh = Mesh & { material: Material; vertexColors?: boolean };
 /** A scene whose every mesh has its one material: what the renderer and the exporter take. */
-export type RenderScene = Omit<Scene, 'meshes'> & { meshes: (Mesh & { material: Material })[] };
+export type RenderScene = Omit<Scene, 'meshes'> & { meshes: RenderMesh[] };
 export type ResolvedScene = Omit<Scene, 'meshes'> & { meshes: ResolvedMesh[] };
 
 /**
@@ -85,14 +93,15 @@ export function resolveFileMaterials(scene: Scene, assets: SceneAssets): { scene
     const data = assets.meshes.get(mesh.file);
     if (data?.lights?.length) lights.push(...data.lights.map((l) => placeLight(l, mesh)));
     if (!wearsFileMaterials(mesh, data)) {
-      meshes.push({ ...mesh, material: mesh.material ?? defaultMaterial(), source: i });
+      meshes.push({ ...mesh, material: mesh.material ?? defaultMaterial(), source: i, vertexColors: false });
       return;
     }
     const own = fileMaterialsOf(mesh, data);
     for (const k of usedMaterials(data!)) {
       const file = `${mesh.file}#material${k}`;
-      subsets.set(file, materialSubset(data!, k, own[k].uvSet));
-      meshes.push({ ...mesh, file, material: own[k].material, source: i });
+      const subset = materialSubset(data!, k, own[k].uvSet);
+      subsets.set(file, subset);
+      meshes.push({ ...mesh, file, material: own[k].material, source: i, vertexColors: own[k].vertexColors && !!subset.colors });
     }
   });
   if (subsets.size === 0 && lights.length === scene.lights.length) return { scene: scene as ResolvedScene, assets };

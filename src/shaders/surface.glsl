@@ -13,6 +13,10 @@ struct Surface {
   vec2 uv;
   // Normal maps: xyz along increasing u, cross(normal, xyz) * w up the image.
   vec4 tangent;
+#if HAS_VERTEX_COLORS
+  // The hit's vertex color (white but on meshes whose material multiplies by it).
+  vec3 color;
+#endif
 };
 
 Surface surfaceAt(Hit hit) {
@@ -22,15 +26,23 @@ Surface surfaceAt(Hit hit) {
   s.geometricNormal = hit.geometricNormal;
   s.uv = hit.uv;
   s.tangent = hit.tangent;
+#if HAS_VERTEX_COLORS
+  s.color = hit.color;
+#endif
   return s;
 }
 
 // The material at the surface point: the record's constants, times their
-// textures where an input has one (the generated applyMaterialTextures).
+// textures where an input has one (the generated applyMaterialTextures),
+// times the vertex color where the kind takes one (glTF's baseColorFactor x
+// baseColorTexture x COLOR_0: the generated applyVertexColor).
 Bsdf evalMaterial(Material m, Surface s) {
   Bsdf b = bsdfFromRecord(m);
 #if HAS_TEXTURES
   applyMaterialTextures(b, m, s.uv);
+#endif
+#if HAS_VERTEX_COLORS
+  applyVertexColor(b, s.color);
 #endif
   return b;
 }

@@ -10,8 +10,8 @@ import { readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
 import { buildBvh, MAX_BVH_DEPTH, type BvhMeshInput } from '../../src/render/bvh/build';
-import { BVH_NODE_TEXELS, BVH_ROOT_NODE, packBvh, triangleAt, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
-import { bruteForce, hitUv, traverseBvh, uvTexel, type Vec3 } from '../../src/render/bvh/traverse';
+import { BVH_NODE_TEXELS, BVH_ROOT_NODE, MAX_COLORED_TRIANGLES, MAX_TRIANGLES, packBvh, triangleAt, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
+import { bruteForce, colorTexel, hitColor, hitUv, traverseBvh, uvTexel, type Vec3 } from '../../src/render/bvh/traverse';
 import { decodeMesh } from '../../src/scene/mesh';
 import { icosphere } from '../support/icosphere';
 import { random, triangleSoup } from '../support/bvhScenes';
@@ -174,6 +174,65 @@ describe('BVH structure', () => {
     const firstNode = (p: PackedBvh) => Math.min(...[...walk(p).nodeVisits.keys()].filter((q) => q !== BVH_ROOT_NODE)) * BVH_NODE_TEXELS;
     expect(firstNode(packed)).toBe(Math.ceil((2048 + 70 * 3 + 90 * 2) / 4) * 4);
     expect(firstNode(build(meshes.map((m) => ({ ...m, uvs: null }))))).toBe(Math.ceil((2048 + 70 * 3) / 4) * 4);
+  });
+
+  it('packs the corners\' vertex colors of colored triangles (flat and smooth, with and without uvs) after their other attributes', () => {
+    const withUvs = (m: BvhMeshInput, seed: number): BvhMeshInput => {
+      const r = random(seed);
+      return { ...m, uvs: new Float32Array((m.positions.length / 3) * 2).map(() => r() * 4 - 2) };
+    };
+    const withColors = (m: BvhMeshInput, seed: number): BvhMeshInput => {
+      const r = random(seed);
+      return { ...m, colors: new Float32Array(m.positions.length).map(() => r()) };
+    };
+    // Every combination of smooth, textured and colored: 8 meshes of 10 + i triangles.
+    const meshes = Array.from({ length: 8 }, (_, i) => {
+      let m = triangleSoup(10 + i, 10 + i, 2, 0, (i & 1) !== 0);
+      if (i & 2) m = withUvs(m, 20 + i);
+      if (i & 4) m = withColors(m, 30 + i);
+      return m;
+    });
+    const counts = meshes.map((m) => m.indices.length / 3);
+    const packed = build(meshes);
+    const tex = packed.texture.data;
+    const blocks = new Set<number>();
+    for (let j = 0; j < packed.triangleCount; j++) {
+      let id = packed.triangleOrder[j];
+      let mesh = 0;
+      while (id >= counts[mesh]) id -= counts[mesh++];
+      const m = meshes[mesh];
+      const k = colorTexel(tex, j);
+      expect(k >= 0, `mesh ${mesh}: colors stored exactly for colored meshes`).toBe(!!m.colors);
+      if (k >= 0) blocks.add(k);
+      const corners = [[0, 0], [1, 0], [0, 1]].map(([b1, b2]) => ({ color: hitColor(packed, { triangle: j, t: 1, b1, b2 }), uv: hitUv(packed, { triangle: j, t: 1, b1, b2 }) }));
+      for (let c = 0; c < 3; c++) {
+        const v = m.indices[id * 3 + c];
+        expect(corners[c].color).toEqual(m.colors ? Array.from(m.colors.subarray(v * 3, v * 3 + 3)) : [1, 1, 1]);
+        // The colors leave the uvs as they were ((0, 0) on a colored flat triangle's zero uv block).
+        expect(corners[c].uv).toEqual(m.uvs ? [m.uvs[v * 2], m.uvs[v * 2 + 1]] : [0, 0]);
+        if (m.normals) for (let q = 0; q < 3; q++) expect(tex[(triangleData(packed, j)[7] + c) * 4 + q]).toBe(m.normals[v * 3 + q]);
+      }
+    }
+    const colored = counts.filter((_, i) => i & 4).reduce((a, b) => a + b, 0);
+    expect(blocks.size, 'a color block of its own per colored triangle').toBe(colored);
+    // Texels per triangle: 3 normals (smooth), 2 uvs (textured, or flat and colored), 3 colors (colored).
+    const texels = meshes.reduce((sum, m, i) => sum + counts[i] * ((m.normals ? 3 : 0) + (m.uvs || (m.colors && !m.normals) ? 2 : 0) + (m.colors ? 3 : 0)), 0);
+    const firstNode = (p: PackedBvh) => Math.min(...[...walk(p).nodeVisits.keys()].filter((q) => q !== BVH_ROOT_NODE)) * BVH_NODE_TEXELS;
+    expect(firstNode(packed)).toBe(Math.ceil((2048 + texels) / 4) * 4);
+    // Without colors the layout is the uncolored one: nothing for them.
+    const plain = meshes.map((m) => ({ ...m, colors: null }));
+    const plainTexels = plain.reduce((sum, m, i) => sum + counts[i] * ((m.normals ? 3 : 0) + (m.uvs ? 2 : 0)), 0);
+    expect(firstNode(build(plain))).toBe(Math.ceil((2048 + plainTexels) / 4) * 4);
+  });
+
+  it('the triangle limits are the most whose texels end below 2^24, with and without vertex colors', () => {
+    // Triangles 681 to a 2048-texel row (3 texels each), then 5 attribute texels each (3 normals, 2 uvs), 8 with colors (3 more).
+    const end = (n: number, attributes: number) => Math.ceil(n / 681) * 2048 + attributes * n;
+    for (const [limit, attributes] of [[MAX_TRIANGLES, 5], [MAX_COLORED_TRIANGLES, 8]]) {
+      expect(end(limit, attributes)).toBeLessThanOrEqual(2 ** 24);
+      expect(end(limit + 1, attributes)).toBeGreaterThan(2 ** 24);
+    }
+    expect(MAX_TRIANGLES).toBe(2_095_104);
   });
 
   it('depth stays within the shader stack for adversarial inputs', () => {

@@ -127,6 +127,7 @@ export const principled: MaterialKind<PrincipledMaterial> = {
   opacity: (m) => m.opacity,
   texturedEmission: true,
   normalMap: (m) => m.normalMap,
+  vertexColorKey: 'baseColor',
   glsl: '../materials/principled/principled.glsl',
   // A textured specTrans may transmit anywhere its image is not black.
   solid: (m) => isTexture(m.specTrans) || m.specTrans > 0,

@@ -35,14 +35,22 @@
  *   2044 .. 2047           the root node (node 511), in row 0's spare texels
  *                          attributes: where the triangle's per-corner attributes are
  *                          (read once per closest hit, never in the traversal loop):
- *                            -1          none (flat, no texture coordinates);
+ *                            -1          none (flat, no texture coordinates, no colors);
  *                            a >= 0      smooth: normals at a .. a + 2, and when n0.w is 1
- *                                        texture coordinates at a + 3, a + 4;
- *                            -2 - a      flat with texture coordinates at a, a + 1.
+ *                                        texture coordinates at a + 3, a + 4; when n1.w is 1
+ *                                        vertex colors after them (a + 3 or a + 5 ..);
+ *                            -2 - a      flat with texture coordinates at a, a + 1, and
+ *                                        when the second uv texel's z is 1 vertex colors
+ *                                        at a + 2 .. a + 4 (a flat triangle with colors and
+ *                                        no uvs stores zero uvs: the same as none).
  *   from the next row      the attribute blocks, one per triangle that has any, in
  *                          triangle order: a smooth triangle's vertex normals n0, n1, n2
- *                          (unit; w = 0, n0.w = 1 when uvs follow), then a textured
- *                          triangle's corners' (u, v): (u0, v0, u1, v1), (u2, v2, 0, 0)
+ *                          (unit; w = 0, n0.w = 1 when uvs follow, n1.w = 1 when colors
+ *                          follow), then a textured triangle's corners' (u, v):
+ *                          (u0, v0, u1, v1), (u2, v2, colors follow ? 1 : 0, 0), then the
+ *                          corners' vertex colors (linear rgb; only for meshes whose
+ *                          material multiplies its base color by them, glTF COLOR_0):
+ *                          (c0.rgb, 0), (c1.rgb, 0), (c2.rgb, 0)
  *   then, from a multiple of 4, the other nodes: node q at texels 4q .. 4q + 3.
  *
  * Only interior nodes are stored (Aila and Laine 2009): a node holds both
@@ -59,11 +67,17 @@
  *
  * Limit: texel indices are stored as floats, exact up to 2^24 = 16.7M
  * texels (16 layers): triangles and attributes must end below that, which
- * MAX_TRIANGLES (2.09M, every triangle smooth and textured) ensures; nodes
- * are referred to by node index (texel / 4). Memory per triangle: 48 bytes
- * flat, 96 smooth, 32 more with texture coordinates (80 flat, 128 smooth),
- * plus 64 bytes per interior node (about one per two triangles at the
- * build's leaf sizes): ~130 MB for 1M smooth triangles, ~160 MB textured.
+ * MAX_TRIANGLES (2.09M, every triangle smooth and textured) ensures for
+ * meshes without vertex colors; vertex colors take 3 texels more per
+ * triangle, so with them the packer's bound is MAX_COLORED_TRIANGLES
+ * (1.52M, every triangle smooth, textured and colored) and a scene past it
+ * is refused here with a message naming both. Nodes are referred to by node
+ * index (texel / 4). Memory per triangle: 48 bytes flat, 96 smooth, 32 more
+ * with texture coordinates (80 flat, 128 smooth), 48 more with vertex
+ * colors (80 more for a flat one without uvs: its zero uvs), plus 64 bytes
+ * per interior node (about one per two triangles at the build's leaf
+ * sizes): ~130 MB for 1M smooth triangles, ~160 MB textured, ~208 MB
+ * textured and colored.
  */
 import type { Bvh, BvhMeshInput } from './build';
 
@@ -85,20 +99,32 @@ export const triangleAt = (texel: number): number => Math.floor(texel / BVH_TEXT
 /** Where the attribute blocks start: the row after the triangles'. */
 const attributesStart = (triangles: number) => Math.max(1, Math.ceil(triangles / BVH_ROW_TRIANGLES)) * BVH_TEXTURE_WIDTH;
 
-/** Texels of a triangle's attribute block: 3 of normals when smooth, 2 of texture coordinates when textured. */
+/** Texels of a triangle's attribute block: 3 of normals when smooth, 2 of texture coordinates when textured (or flat and colored), 3 of vertex colors when colored. */
 export const NORMAL_TEXELS = 3;
 export const UV_TEXELS = 2;
+export const COLOR_TEXELS = 3;
 
-/** The documented total: the most triangles whose texels end below BVH_MAX_TEXELS when every one is smooth and textured (3 texels, 3 of normals, 2 of uvs). */
-export const MAX_TRIANGLES = (() => {
-  let [lo, hi] = [0, Math.floor(BVH_MAX_TEXELS / 8)];
+/** The most triangles whose texels end below BVH_MAX_TEXELS when every one has `attributeTexels` of attributes. */
+function mostTriangles(attributeTexels: number): number {
+  let [lo, hi] = [0, Math.floor(BVH_MAX_TEXELS / (BVH_TRIANGLE_TEXELS + attributeTexels))];
   while (lo < hi) {
     const mid = Math.ceil((lo + hi) / 2);
-    if (attributesStart(mid) + (NORMAL_TEXELS + UV_TEXELS) * mid <= BVH_MAX_TEXELS) lo = mid;
+    if (attributesStart(mid) + attributeTexels * mid <= BVH_MAX_TEXELS) lo = mid;
     else hi = mid - 1;
   }
   return lo;
-})();
+}
+
+/** The documented total: the most triangles when every one is smooth and textured (3 texels, 3 of normals, 2 of uvs). */
+export const MAX_TRIANGLES = mostTriangles(NORMAL_TEXELS + UV_TEXELS);
+/** The same with vertex colors on every triangle (3 texels more each). */
+export const MAX_COLORED_TRIANGLES = mostTriangles(NORMAL_TEXELS + UV_TEXELS + COLOR_TEXELS);
+
+/** The attribute texels of each triangle of `m` (the block layout above). */
+function blockTexels(m: BvhMeshInput): number {
+  const colors = !!m.colors;
+  return (m.normals ? NORMAL_TEXELS : 0) + (m.uvs || (colors && !m.normals) ? UV_TEXELS : 0) + (colors ? COLOR_TEXELS : 0);
+}
 
 /** A 2D RGBA32F texture's data: width * height * 4 floats. */
 export interface TextureData {
@@ -147,17 +173,17 @@ export interface BvhGroup {
 /**
  * Packs several BVHs into one texture: their triangles one after another
  * (group by group, BVH order within each), then the attribute blocks
- * (normals, texture coordinates), then the nodes. The first group's root is BVH_ROOT_NODE; each
+ * (normals, texture coordinates, vertex colors), then the nodes. The first group's root is BVH_ROOT_NODE; each
  * group's root node is in `roots`.
  */
 export function packBvhGroups(groups: BvhGroup[]): PackedBvh {
   const firstTriangle = [0];
   groups.forEach((g, i) => firstTriangle.push(firstTriangle[i] + g.bvh.triangleOrder.length));
   const n = firstTriangle[groups.length];
-  const attributeTexels = groups.reduce((sum, g) => sum + g.meshes.reduce((s, m) => s + ((m.normals ? NORMAL_TEXELS : 0) + (m.uvs ? UV_TEXELS : 0)) * (m.indices.length / 3), 0), 0);
+  const attributeTexels = groups.reduce((sum, g) => sum + g.meshes.reduce((s, m) => s + blockTexels(m) * (m.indices.length / 3), 0), 0);
   const attributesEnd = attributesStart(n) + attributeTexels;
   if (attributesEnd > BVH_MAX_TEXELS) {
-    throw new Error(`${n} triangles exceed the BVH texture limit (${MAX_TRIANGLES} smooth textured triangles in total)`);
+    throw new Error(`${n} triangles exceed the BVH texture limit (${MAX_TRIANGLES} smooth textured triangles in total, ${MAX_COLORED_TRIANGLES} with vertex colors)`);
   }
   // Stored nodes: the first group's root at BVH_ROOT_NODE, every other interior node (depth-first, group by group) from the first multiple of 4 texels after the attributes.
   const firstSlot = Math.ceil(attributesEnd / BVH_NODE_TEXELS);
@@ -206,21 +232,26 @@ export function packBvhGroups(groups: BvhGroup[]): PackedBvh {
       const at = firstTriangle[g] + j;
       triangleOrder[at] = firstInput + id;
       mesh = findMesh(meshOf, id, mesh);
-      const { positions, normals, uvs, indices, material = 0 } = meshes[mesh];
+      const { positions, normals, uvs, colors, indices, material = 0 } = meshes[mesh];
       const local = (id - meshOf[mesh]) * 3;
       const o = triangleTexel(at) * 4;
+      // A flat colored triangle keeps a (zero) uv block: its second texel says the colors follow.
+      const uvBlock = !!uvs || (!!colors && !normals);
       const uvTexel = attributeTexel + (normals ? NORMAL_TEXELS : 0);
+      const colorTexel = uvTexel + (uvBlock ? UV_TEXELS : 0);
       for (let c = 0; c < 3; c++) {
         const v = indices[local + c];
         for (let k = 0; k < 3; k++) out[o + c * 4 + k] = positions[v * 3 + k];
         if (normals) for (let k = 0; k < 3; k++) out[attributeTexel * 4 + c * 4 + k] = normals[v * 3 + k];
         if (uvs) for (let k = 0; k < 2; k++) out[uvTexel * 4 + c * 2 + k] = uvs[v * 2 + k];
+        if (colors) for (let k = 0; k < 3; k++) out[(colorTexel + c) * 4 + k] = colors[v * 3 + k];
       }
       if (normals && uvs) out[attributeTexel * 4 + 3] = 1;
+      if (colors) out[normals ? attributeTexel * 4 + 7 : (uvTexel + 1) * 4 + 2] = 1;
       out[o + 3] = material;
-      out[o + 7] = normals ? attributeTexel : uvs ? -2 - attributeTexel : -1;
+      out[o + 7] = normals ? attributeTexel : uvBlock ? -2 - attributeTexel : -1;
       out[o + 11] = meshes[mesh].mesh ?? mesh;
-      attributeTexel += (normals ? NORMAL_TEXELS : 0) + (uvs ? UV_TEXELS : 0);
+      attributeTexel += blockTexels(meshes[mesh]);
     }
     firstInput += meshOf[meshes.length];
   });

@@ -182,3 +182,19 @@ export function hitUv(packed: PackedBvh, hit: BvhHit): [number, number] {
   const b0 = 1 - hit.b1 - hit.b2;
   return [0, 1].map((c) => b0 * tex[k * 4 + c] + hit.b1 * tex[k * 4 + 2 + c] + hit.b2 * tex[(k + 1) * 4 + c]) as [number, number];
 }
+
+/** The first texel of triangle j's corner vertex colors (pack.ts: its attributes), or -1 when it has none. */
+export function colorTexel(tex: Float32Array, j: number): number {
+  const a = tex[triangleTexel(j) * 4 + 7];
+  if (a >= 0) return tex[(a + 1) * 4 + 3] > 0 ? a + 3 + (tex[a * 4 + 3] > 0 ? 2 : 0) : -1;
+  return a <= -2 && tex[(-2 - a + 1) * 4 + 2] > 0 ? -2 - a + 2 : -1;
+}
+
+/** The hit's vertex color, its corners' interpolated (bvh.glsl bvhSurface's color); white without. */
+export function hitColor(packed: PackedBvh, hit: BvhHit): [number, number, number] {
+  const tex = packed.texture.data;
+  const k = colorTexel(tex, hit.triangle);
+  if (k < 0) return [1, 1, 1];
+  const b0 = 1 - hit.b1 - hit.b2;
+  return [0, 1, 2].map((c) => b0 * tex[k * 4 + c] + hit.b1 * tex[(k + 1) * 4 + c] + hit.b2 * tex[(k + 2) * 4 + c]) as [number, number, number];
+}

@@ -22,6 +22,8 @@ export interface WorldMeshes {
   toWorld: Float64Array[];
   /** Each scene mesh's world-space area and triangle count. */
   sizes: { area: number; triangles: number }[];
+  /** Each scene mesh: whether its material multiplies by its file's vertex colors (the BVH stores them only then). */
+  vertexColors: boolean[];
 }
 
 export function triangleArea(p: ArrayLike<number>, i: Uint32Array, t: number): number {
@@ -59,25 +61,33 @@ function meshArea(mesh: TriangleMesh, toWorld?: Float64Array): number {
  * copied (world group) meshes' transforms.
  */
 function bvhKey(scene: Scene, groups: MeshGroups): string {
-  return JSON.stringify([groups, groups.world.map((i) => [scene.meshes[i].position, scene.meshes[i].rotation, scene.meshes[i].scale])]);
+  return JSON.stringify([groups, groups.world.map((i) => [scene.meshes[i].position, scene.meshes[i].rotation, scene.meshes[i].scale]), vertexColorsOf(scene)]);
 }
+
+/** Per scene mesh, whether the BVH stores its vertex colors: its material multiplies by them. */
+const vertexColorsOf = (scene: Scene): boolean[] => scene.meshes.map((m) => m.vertexColors === true);
 
 /** The BVH's groups of triangles (see groups.ts): the world group's copies (when any), then each shared file's triangles once. */
 export function bvhInputs(sceneModel: SceneModel, allAssets: SceneAssets): BvhMeshInput[][] {
   const { scene, assets } = resolveFileMaterials(sceneModel, allAssets);
   const data = (i: number) => assets.meshes.get(scene.meshes[i].file)!;
-  return groupInputs(groupMeshes(scene, trianglesIn(assets)), (i) => transformMesh(data(i), scene.meshes[i]), data);
+  return groupInputs(groupMeshes(scene, trianglesIn(assets)), (i) => transformMesh(data(i), scene.meshes[i]), data, vertexColorsOf(scene));
 }
 
 /**
  * The inputs of the BVH groups: the copies (`copy(i)`, world space) tagged
  * with their mesh, when any; then each shared file's triangles (`data(i)` of
  * its first mesh) once, untagged (its instances carry the mesh). Every
- * triangle's mesh-local material is 0 (a mesh has one material).
+ * triangle's mesh-local material is 0 (a mesh has one material). A mesh's
+ * vertex colors (its file's, `data(i).colors`) go in only where
+ * `vertexColors[i]`: a material that does not multiply by them costs no
+ * texels. The meshes sharing a file all name the same subset of it
+ * (fileMaterials.ts), so they agree; the first one's flag decides.
  */
-export function groupInputs(groups: MeshGroups, copy: (i: number) => TriangleMesh, data: (i: number) => TriangleMesh): BvhMeshInput[][] {
-  const copies = groups.world.map((i) => ({ ...copy(i), material: 0, mesh: i }));
-  return [...(copies.length > 0 ? [copies] : []), ...groups.shared.map((users) => [{ ...data(users[0]), material: 0, mesh: -1 }])];
+export function groupInputs(groups: MeshGroups, copy: (i: number) => TriangleMesh, data: (i: number) => TriangleMesh, vertexColors: readonly boolean[]): BvhMeshInput[][] {
+  const colors = (i: number) => (vertexColors[i] ? (data(i).colors ?? null) : null);
+  const copies = groups.world.map((i) => ({ ...copy(i), colors: colors(i), material: 0, mesh: i }));
+  return [...(copies.length > 0 ? [copies] : []), ...groups.shared.map((users) => [{ ...data(users[0]), colors: colors(users[0]), material: 0, mesh: -1 }])];
 }
 
 /**
@@ -121,8 +131,9 @@ export function prepareWorldMeshes(scene: Scene, assets: SceneAssets, previous: 
     const sizes = w.sizes.map((size, i) => (w.meshes[i] ? size : instanceSize(data[i], toWorld[i])));
     return { ...w, toWorld, sizes };
   }
+  const vertexColors = vertexColorsOf(scene);
   const meshes = scene.meshes.map((mesh, i) => (groups.world.includes(i) ? transformMesh(data[i], mesh) : null));
   const sizes = meshes.map((m, i) => (m ? { area: meshArea(m), triangles: m.indices.length / 3 } : instanceSize(data[i], toWorld[i])));
-  return { key, data, groups, meshes, toWorld, sizes };
+  return { key, data, groups, meshes, toWorld, sizes, vertexColors };
 }
 

@@ -100,7 +100,7 @@ export class AssetTextures {
     if (world.meshes.length === 0) return;
     let packed = prebuiltFor(prebuilt, world);
     if (!packed) {
-      packed = buildAndPackGroups(groupInputs(world.groups, (i) => world.meshes[i]!, (i) => world.data[i]));
+      packed = buildAndPackGroups(groupInputs(world.groups, (i) => world.meshes[i]!, (i) => world.data[i], world.vertexColors));
     }
     const instances = world.groups.shared.length > 0 ? new InstanceTable(this.gl, instanceRecords(world, packed.roots)) : null;
     const { roots, triangleOrder } = packed;

@@ -13,7 +13,10 @@
 //     the material-table index is the mesh record's materialBase + local (scene/intersect.glsl);
 //     attributes (read by bvhSurface only): -1 none; a >= 0 smooth, vertex normals n0 n1 n2
 //     at a .. a + 2 and, when n0.w is 1, corner uvs at a + 3, a + 4; -2 - a flat with corner
-//     uvs at a, a + 1. Corner uvs: (u0, v0, u1, v1), (u2, v2, 0, 0).
+//     uvs at a, a + 1. Corner uvs: (u0, v0, u1, v1), (u2, v2, colors, 0). Vertex colors
+//     (HAS_VERTEX_COLORS only) follow the uvs (or a smooth triangle's normals when it has
+//     none) when n1.w is 1 (smooth) or the uvs' `colors` is 1 (flat): (c0.rgb, 0), (c1.rgb, 0),
+//     (c2.rgb, 0).
 //
 // Traversal, shaped for SwiftShader: it runs a pixel quad's 4 lanes in lock
 // step through everything in the loop body, whatever each lane does (both
@@ -57,6 +60,9 @@
 #ifndef HAS_INSTANCES
 #define HAS_INSTANCES 0
 #endif
+#ifndef HAS_VERTEX_COLORS
+#define HAS_VERTEX_COLORS 0
+#endif
 
 uniform highp sampler2DArray uBvh;
 
@@ -72,6 +78,9 @@ struct BvhSurface {
   vec3 shadingNormal;   // interpolated vertex normal (smooth), else the geometric normal
   vec2 uv;              // interpolated corner texture coordinates, (0, 0) without
   vec3 dpdu, dpdv;      // normal maps: the triangle's position derivatives along u and v (0 without uvs)
+#if HAS_VERTEX_COLORS
+  vec3 color;           // interpolated corner vertex colors (linear), white without
+#endif
   int localMaterial;  // among the mesh's own: the table's is its MeshRecord.materialBase + this
   int mesh;
 };
@@ -275,11 +284,20 @@ BvhSurface bvhSurface(BvhHit hit, mat3 normalMatrix) {
   s.shadingNormal = s.geometricNormal;
   int attributes = int(t1.w);
   bool textured = attributes <= -2;
+#if HAS_VERTEX_COLORS
+  bool colored = false;
+  int colorTexel = 0;
+#endif
   if (t1.w >= 0.0) {
     int k = int(t1.w);
     vec4 first = bvhTexel(uBvh, k);
     textured = first.w > 0.0;
-    vec3 n0 = first.xyz, n1 = bvhTexel(uBvh, k + 1).xyz, n2 = bvhTexel(uBvh, k + 2).xyz;
+    vec4 second = bvhTexel(uBvh, k + 1);
+    vec3 n0 = first.xyz, n1 = second.xyz, n2 = bvhTexel(uBvh, k + 2).xyz;
+#if HAS_VERTEX_COLORS
+    colored = second.w > 0.0;
+    colorTexel = k + 3 + (textured ? 2 : 0);
+#endif
 #if HAS_INSTANCES
     n0 = bvhUnitOrZero(normalMatrix * n0);
     n1 = bvhUnitOrZero(normalMatrix * n1);
@@ -296,12 +314,23 @@ BvhSurface bvhSurface(BvhHit hit, mat3 normalMatrix) {
   if (textured) {
     int k = attributes >= 0 ? attributes + 3 : -2 - attributes;
     vec4 uv01 = bvhTexel(uBvh, k);
-    vec2 uv2 = bvhTexel(uBvh, k + 1).xy;
+    vec4 uv2Texel = bvhTexel(uBvh, k + 1);
+    vec2 uv2 = uv2Texel.xy;
     s.uv = b.x * uv01.xy + b.y * uv01.zw + b.z * uv2;
 #if HAS_NORMAL_MAPS
     bvhPositionDerivatives(t1.xyz - t0.xyz, t2.xyz - t0.xyz, uv01.zw - uv01.xy, uv2 - uv01.xy, s.dpdu, s.dpdv);
 #endif
+#if HAS_VERTEX_COLORS
+    colored = colored || (attributes <= -2 && uv2Texel.z > 0.0);
+    colorTexel = attributes >= 0 ? colorTexel : k + 2;
+#endif
   }
+#if HAS_VERTEX_COLORS
+  s.color = vec3(1.0);
+  if (colored) {
+    s.color = b.x * bvhTexel(uBvh, colorTexel).rgb + b.y * bvhTexel(uBvh, colorTexel + 1).rgb + b.z * bvhTexel(uBvh, colorTexel + 2).rgb;
+  }
+#endif
   s.localMaterial = int(t0.w);
   s.mesh = int(t2.w);
   return s;

@@ -24,6 +24,9 @@ struct Hit {
                     // cross(normal, xyz) * w points up the image (toward decreasing v);
                     // xyz 0 without texture coordinates
   float scale;      // size of the hit object, for the self-intersection offset
+#if HAS_VERTEX_COLORS
+  vec3 color;       // triangles: their corners' vertex colors interpolated (white without); others white
+#endif
   vec4 geometry;    // the sphere hit: [center, radius]; a planar light: [slot, emitter tag, 0, 0]
   int material;     // index into the material table
   float emitterPdf; // sphere, planar light: probability that light sampling picks it; triangle: the mesh's
@@ -129,6 +132,9 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   hit.geometricNormal = hit.normal;
   hit.uv = isGround ? groundPosition.xz : vec2(0.0);
   hit.tangent = vec4(isGround ? vec3(1.0, 0.0, 0.0) : vec3(0.0), 1.0);  // the ground: u = x, v = z
+#if HAS_VERTEX_COLORS
+  hit.color = vec3(1.0);  // planar lights keep it
+#endif
 #if HAS_PLANAR_LIGHTS
   // As for spheres: the loop keeps the nearest distance and slot only.
   float tPlanar = INFINITY;
@@ -150,6 +156,9 @@ Hit intersectScene(vec3 origin, vec3 direction) {
     hit.normal = s.shadingNormal;
     hit.geometricNormal = s.geometricNormal;
     hit.uv = s.uv;
+#if HAS_VERTEX_COLORS
+    hit.color = s.color;
+#endif
 #if HAS_NORMAL_MAPS
     // glTF's rule: the bitangent points up the image, also on a mirrored chart.
     hit.tangent = vec4(s.dpdu, dot(cross(s.shadingNormal, s.dpdu), s.dpdv) > 0.0 ? -1.0 : 1.0);
