@@ -3,11 +3,11 @@
  * relative to the scene file's folder, as the format says, or the page's
  * bundled maps (src/app/bundledMaps.ts: pure, no DOM) when not there.
  */
-import { readFile } from 'node:fs/promises';
 import path from 'node:path';
 import { bundledMapBytes, bundledMapName } from '../app/bundledMaps';
 import { assetReferences, type SceneAssets } from '../scene/assets';
 import type { Scene } from '../scene/types';
+import { readFileWithinLimit } from './readWithinLimit';
 
 export interface SceneFiles {
   /** Bytes by name as written in the scene (what RenderSession.load takes). */
@@ -43,11 +43,12 @@ export async function readSceneFiles(scene: Scene, sceneFile: string): Promise<S
 /**
  * A file beside the scene; a page's bundled map (`bundled/studio.exr`) that
  * is not there comes from the bundle, as on the page, so a scene the page
- * saved (or `pathtrace scene` wrote) renders here as it is.
+ * saved (or `pathtrace scene` wrote) renders here as it is. A file above
+ * MAX_MESH_FILE_BYTES is refused from its size, before it is read.
  */
 async function readBesideOrBundled(folder: string, name: string): Promise<Uint8Array> {
   try {
-    return new Uint8Array(await readFile(path.resolve(folder, name)));
+    return await readFileWithinLimit(path.resolve(folder, name));
   } catch (error) {
     const bundled = (error as NodeJS.ErrnoException).code === 'ENOENT' ? bundledMapName(name) : null;
     if (bundled === null) throw error;

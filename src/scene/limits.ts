@@ -27,3 +27,13 @@ export const MAX_SCENE_BYTES = 1_000_000;
  * only the tables.
  */
 export const MAX_MESHES = 256;
+/**
+ * Largest mesh file read, in bytes (a `.glb`, a `.gltf`'s `.bin`, an OBJ, a
+ * PLY): 1 GiB. The CLI checks a file's size before reading it
+ * (src/node/readMesh.ts; src/node/sceneFiles.ts applies it to every file a
+ * scene names, since no valid image or map is that large: their decoded
+ * limits are smaller), and a GLB's declared length is checked against it
+ * before parsing (src/scene/mesh/gltf.ts), so a 2 GB model is refused with a
+ * message instead of being read whole.
+ */
+export const MAX_MESH_FILE_BYTES = 2 ** 30;

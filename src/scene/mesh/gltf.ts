@@ -22,6 +22,7 @@
 import { WebIO, type Document, type Material as GltfMaterial, type Node, type Primitive } from '@gltf-transform/core';
 import { KHRONOS_EXTENSIONS } from '@gltf-transform/extensions';
 import { AssetError } from '../assetError';
+import { MAX_MESH_FILE_BYTES } from '../limits';
 import type { EmbeddedImage, FileMaterial, TriangleMesh } from '../types';
 import { finalizeMesh } from './finalize';
 import { checkGltfReferences, ignoredExtensions } from './gltfChecks';
@@ -74,6 +75,7 @@ export async function decodeGltf(bytes: Uint8Array, binary: boolean, resolveReso
     if (binary) {
       json = glbJson(bytes);
       checkGltfReferences(json);
+      checkGlbSelfContained(json);
       document = await (await createIO(json)).readBinary(bytes);
     } else {
       json = parseJson(bytes);
@@ -109,9 +111,18 @@ function parseJson(bytes: Uint8Array): GltfJson {
 function glbJson(bytes: Uint8Array): GltfJson {
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
   if (bytes.length < 20 || view.getUint32(0, true) !== 0x46546c67) throw new AssetError('not a GLB file (no "glTF" magic)');
+  // The header's total length, before anything is parsed (the CLI refuses such a file from its size already).
+  const declared = view.getUint32(8, true);
+  if (declared > MAX_MESH_FILE_BYTES) throw new AssetError(`the GLB header declares ${declared} bytes; files above ${MAX_MESH_FILE_BYTES / 2 ** 30} GiB (MAX_MESH_FILE_BYTES) are not read`);
   const length = view.getUint32(12, true);
   if (view.getUint32(16, true) !== 0x4e4f534a || 20 + length > bytes.length) throw new AssetError('corrupt GLB file (bad JSON chunk)');
   return parseJson(bytes.subarray(20, 20 + length));
+}
+
+/** glTF-Transform reads a .glb's embedded resources only: an image or buffer named by a file URI is refused by name. */
+function checkGlbSelfContained(json: GltfJson): void {
+  const external = [...(json.images ?? []), ...(json.buffers ?? [])].find((r) => typeof r.uri === 'string' && !r.uri.startsWith('data:'));
+  if (external) throw new AssetError(`the .glb names "${external.uri}" outside itself, which is not read: embed its images and buffers, or use a .gltf beside them`);
 }
 
 async function externalResources(json: GltfJson, resolve?: ResourceResolver): Promise<Record<string, Uint8Array<ArrayBuffer>>> {
@@ -124,6 +135,8 @@ async function externalResources(json: GltfJson, resolve?: ResourceResolver): Pr
     try {
       resources[buffer.uri] = new Uint8Array(await resolve(buffer.uri));
     } catch (error) {
+      // A reader's own verdict (a buffer over MAX_MESH_FILE_BYTES) is not a missing file.
+      if (error instanceof AssetError) throw new AssetError(`its buffer "${buffer.uri}": ${error.message}`);
       throw new AssetError(`its buffer "${buffer.uri}" is missing (${(error as Error).message}): a .gltf needs its .bin beside it`);
     }
   }

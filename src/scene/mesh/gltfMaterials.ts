@@ -107,6 +107,7 @@ function alphaOpacity(m: GltfMaterial, texture: TextureRef | null, factor: numbe
     const cutoff = m.getAlphaCutoff();
     // The renderer thresholds the filtered texel, then scales: factor * alpha >= cutoff is alpha >= cutoff / factor.
     if (!texture) return a >= cutoff ? 1 : 0;
+    if (cutoff <= 0) return 1; // every factor x alpha >= 0 passes, a zero factor included
     if (a === 0 || cutoff / a > 1) return 0;
     return { ...textureJson(texture, 1), channel: 'a', cutoff: cutoff / a };
   }
