@@ -12,7 +12,7 @@ import { materialTextures } from '../materials/registry';
 import { AssetError } from '../scene/assetError';
 import { fileImageName, joinPath } from '../scene/fileMaterials';
 import type { TriangleMesh } from '../scene/types';
-import { MAX_ASSET_BYTES } from './store';
+import { MAX_ASSET_BYTES } from './fileLimits';
 
 /** The user's files opened or dropped together, by file name. */
 export type FileTable = ReadonlyMap<string, Blob>;

@@ -35,7 +35,7 @@ export async function resolveAssets(scene: Scene, files: CompanionFiles, known: 
     if (key !== undefined) return readUserFile(files.get(key)!);
     const bundled = bundledMapName(name);
     if (bundled) return bundledMapBytes(bundled);
-    throw new AssetError(`not opened: open or drop it together with the scene file`);
+    throw new AssetError(`not opened: open or drop it together with the scene or model that names it`);
   };
   const maps = await decodeMaps(scene, read, known);
   const meshes = await decodeMeshes(scene, read, files, known);

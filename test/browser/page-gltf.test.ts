@@ -5,15 +5,16 @@
  * baseColor a red image, the right one's a blue image) dropped together are
  * added as a mesh wearing the file's own materials (`material` absent,
  * version 3); the image shows red on the left and blue on the right; the
+ * panel lists the materials, and switches to one material and back (undoable);
+ * without its .bin the model is refused naming `meshes[0].file` and the .bin; the
  * .bin and the images are kept with the autosave, so a reload shows them
  * again. The scene is a link's: a white sky, no ground, nothing else, so
  * the colours seen are the textures'.
  */
-import { Document, NodeIO } from '@gltf-transform/core';
 import { compressToEncodedURIComponent } from 'lz-string';
-import { PNG } from 'pngjs';
 import type { Page } from 'playwright-core';
 import { describe, expect, it } from 'vitest';
+import { quadsGltf } from '../support/gltfQuads';
 import { canvasPixels, openPage, savedScene, usePageHarness, waitForSpp } from '../support/page';
 
 const SCENE = {
@@ -24,36 +25,6 @@ const SCENE = {
   environment: { color: [1, 1, 1], intensity: 1 },
   spheres: [],
 };
-
-/** A 4x4 PNG of one colour. */
-function png(rgb: [number, number, number]): Uint8Array {
-  const image = new PNG({ width: 4, height: 4 });
-  for (let i = 0; i < 16; i++) image.data.set([...rgb, 255], 4 * i);
-  return new Uint8Array(PNG.sync.write(image));
-}
-
-/** Two unit quads facing +z (left x in [-1.05, -0.05], right in [0.05, 1.05]), each with a textured matte material. */
-async function quadsGltf(): Promise<Record<string, Uint8Array>> {
-  const doc = new Document();
-  const buffer = doc.createBuffer().setURI('quads.bin');
-  const mesh = doc.createMesh();
-  for (const [x0, image, name] of [[-1.05, 'red.png', 'left'], [0.05, 'blue.png', 'right']] as const) {
-    const texture = doc.createTexture(name).setImage(png(image === 'red.png' ? [255, 0, 0] : [0, 0, 255])).setMimeType('image/png').setURI(image);
-    const material = doc.createMaterial(name).setMetallicFactor(0).setRoughnessFactor(1).setBaseColorTexture(texture);
-    const positions = [x0, -0.5, 0, x0 + 1, -0.5, 0, x0 + 1, 0.5, 0, x0, 0.5, 0];
-    const accessor = (type: 'VEC2' | 'VEC3' | 'SCALAR', array: Float32Array<ArrayBuffer> | Uint16Array<ArrayBuffer>) => doc.createAccessor().setType(type).setArray(array).setBuffer(buffer);
-    const primitive = doc.createPrimitive()
-      .setAttribute('POSITION', accessor('VEC3', new Float32Array(positions)))
-      .setAttribute('NORMAL', accessor('VEC3', new Float32Array([0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1])))
-      .setAttribute('TEXCOORD_0', accessor('VEC2', new Float32Array([0, 1, 1, 1, 1, 0, 0, 0])))
-      .setIndices(accessor('SCALAR', new Uint16Array([0, 1, 2, 0, 2, 3])))
-      .setMaterial(material);
-    mesh.addPrimitive(primitive);
-  }
-  doc.createScene().addChild(doc.createNode().setMesh(mesh));
-  const { json, resources } = await new NodeIO().writeJSON(doc, { basename: 'quads' });
-  return { 'quads.gltf': new TextEncoder().encode(JSON.stringify(json)), ...resources };
-}
 
 /** Drops files on the page together, as a user dragging them from the desktop does. */
 async function dropFiles(page: Page, files: Record<string, Uint8Array>): Promise<void> {
@@ -103,7 +74,17 @@ describe('glTF files on the page', () => {
     const white = await sideColours(page);
     expect(Math.min(...white.left, ...white.right)).toBeGreaterThan(150); // the sky alone
 
-    await dropFiles(page, await quadsGltf());
+    // Without its .bin: refused, naming the key and the missing file; the scene and its samples stay.
+    const files = await quadsGltf();
+    const { 'quads.bin': _bin, ...withoutBin } = files;
+    await dropFiles(page, withoutBin);
+    const alert = page.getByTestId('error');
+    await alert.waitFor({ state: 'visible' });
+    expect(await alert.textContent()).toMatch(/The model "quads\.gltf" could not be added; the scene is unchanged\..*meshes\[0\]\.file: "quads\.gltf": .*"quads\.bin"/);
+    expect((await savedScene(page)).meshes ?? []).toEqual([]);
+    await alert.locator('.dismiss').click();
+
+    await dropFiles(page, files);
     await page.locator('.lil-title', { hasText: 'Selected mesh 1' }).waitFor();
     const scene = await savedScene(page);
     expect(scene.version).toBe(3);
@@ -118,6 +99,19 @@ describe('glTF files on the page', () => {
     await renderedMeshes(page, 4);
     expectTextures(await sideColours(page));
     expect(await page.getByTestId('error').isHidden()).toBe(true);
+
+    // "one material for all": a principled material, edited as any; "the file's materials": back; both undoable.
+    const meshMaterial = async () => ((await savedScene(page)).meshes as Record<string, unknown>[])[0].material as Record<string, unknown> | undefined;
+    await selection.locator('.lil-controller', { hasText: 'one material for all' }).locator('button').click();
+    await selection.locator('.lil-controller', { hasText: "the file's materials" }).waitFor();
+    expect((await meshMaterial())?.type).toBe('principled');
+    await selection.locator('.lil-controller', { hasText: "the file's materials" }).locator('button').click();
+    await selection.locator('.lil-controller', { hasText: 'one material for all' }).waitFor();
+    expect(await meshMaterial()).toBeUndefined();
+    await page.click('#undo');
+    await selection.locator('.lil-controller', { hasText: "the file's materials" }).waitFor();
+    await page.click('#redo');
+    await selection.locator('.lil-controller', { hasText: 'one material for all' }).waitFor();
 
     // Kept with the autosave (the .bin and the images beside the .gltf too): a reload shows the textures again.
     await page.waitForFunction(() => document.body.dataset.saved === 'saved');
