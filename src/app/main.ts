@@ -18,6 +18,7 @@ import { linkDigest } from './savedState';
 import { SceneLoader } from './sceneLoader';
 import { addModelFile, isModelFile, meshExampleFiles, showMeshWarnings } from './meshControls';
 import { userFiles } from './userFiles';
+import { droppedFiles } from './droppedFiles';
 import { EnvironmentMaps, MAP_FILE_PATTERN } from './environmentMaps';
 import { MAP_EXAMPLES, MESH_EXAMPLES, TEXTURE_EXAMPLES } from './examples';
 import { Panel } from './panel';
@@ -248,7 +249,8 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader, maps: Envi
     hint.hidden = true;
     if (event.defaultPrevented) return; // taken on its way here (an image dropped on a texture slot)
     event.preventDefault();
-    openFiles(event.dataTransfer?.files);
+    // A dropped folder's files (a .gltf with its .bin and images) as if dropped together.
+    void droppedFiles(event.dataTransfer).then(openFiles);
   });
 
   const examples = $<HTMLSelectElement>('examples');
