@@ -6,7 +6,8 @@
  * added as a mesh wearing the file's own materials (`material` absent,
  * version 3); the image shows red on the left and blue on the right; the
  * panel lists the materials, and switches to one material and back (undoable);
- * without its .bin the model is refused naming `meshes[0].file` and the .bin; the
+ * without its .bin the model is refused naming `meshes[0].file` and the .bin;
+ * an extension it ignores is a notice; the share notice names all four files; the
  * .bin and the images are kept with the autosave, so a reload shows them
  * again. The scene is a link's: a white sky, no ground, nothing else, so
  * the colours seen are the textures'.
@@ -76,6 +77,9 @@ describe('glTF files on the page', () => {
 
     // Without its .bin: refused, naming the key and the missing file; the scene and its samples stay.
     const files = await quadsGltf();
+    // An extension the loader ignores: a notice, not an error.
+    const json = JSON.parse(new TextDecoder().decode(files['quads.gltf']));
+    files['quads.gltf'] = new TextEncoder().encode(JSON.stringify({ ...json, extensionsUsed: ['EXT_page_test'] }));
     const { 'quads.bin': _bin, ...withoutBin } = files;
     await dropFiles(page, withoutBin);
     const alert = page.getByTestId('error');
@@ -86,6 +90,8 @@ describe('glTF files on the page', () => {
 
     await dropFiles(page, files);
     await page.locator('.lil-title', { hasText: 'Selected mesh 1' }).waitFor();
+    expect(await page.locator('#notice').textContent()).toBe('meshes[0].file: "quads.gltf" ignores the glTF extensions EXT_page_test');
+    expect(await page.getByTestId('error').isHidden()).toBe(true);
     const scene = await savedScene(page);
     expect(scene.version).toBe(3);
     expect(scene.meshes).toHaveLength(1);
@@ -112,6 +118,9 @@ describe('glTF files on the page', () => {
     await selection.locator('.lil-controller', { hasText: "the file's materials" }).waitFor();
     await page.click('#redo');
     await selection.locator('.lil-controller', { hasText: 'one material for all' }).waitFor();
+    // The share link cannot carry the user's files: its notice names them all.
+    await page.click('#share');
+    await expect.poll(() => page.locator('#notice').textContent()).toMatch(/It names your files "quads\.gltf", "quads\.bin", "red\.png", "blue\.png"/);
 
     // Kept with the autosave (the .bin and the images beside the .gltf too): a reload shows the textures again.
     await page.waitForFunction(() => document.body.dataset.saved === 'saved');
