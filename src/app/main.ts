@@ -10,16 +10,16 @@ import { safeParseScene } from '../scene/schema';
 import { defaultScene, PRESET_NAMES, PRESETS } from '../scene/presets';
 import { stringifyScene } from '../scene/serialize';
 import { App } from './App';
-import { assetReferences } from '../scene/assets';
 import { downloadBlob, readSceneFile, rgba8ToPngBlob, sceneFromHash, shareHash } from './files';
 import { attachInput, attachKeys } from './input';
 import { clearError, notify, showError, showFatal, showIssues } from './messages';
 import { Autosave, readStartState, type SaveStatus, type StartState } from './persistence';
 import { linkDigest } from './savedState';
 import { SceneLoader } from './sceneLoader';
-import { addModelFile, isModelFile, meshExampleFiles } from './meshControls';
+import { addModelFile, isModelFile, meshExampleFiles, showMeshWarnings } from './meshControls';
+import { userFiles } from './userFiles';
+import { droppedFiles } from './droppedFiles';
 import { EnvironmentMaps, MAP_FILE_PATTERN } from './environmentMaps';
-import { bundledMapName } from './bundledMaps';
 import { MAP_EXAMPLES, MESH_EXAMPLES, TEXTURE_EXAMPLES } from './examples';
 import { Panel } from './panel';
 import { TextureImages } from './textureImages';
@@ -91,6 +91,7 @@ function openStartState(app: App, autosave: Autosave, start: StartState): SceneL
     (scene, assets, files) => {
       clearError();
       app.load(scene, assets);
+      showMeshWarnings(scene, assets);
       if (files.size) void autosave.keepFiles(scene, files);
     },
     showIssues,
@@ -209,9 +210,13 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader, maps: Envi
       void maps.useFile(files[0]);
       return;
     }
-    if (files.every((f) => isModelFile(f.name))) {
-      // Models alone are added to the open scene, one after another.
-      void files.reduce<Promise<unknown>>((done, f) => done.then(() => addModelFile(app, f, (kept) => void autosave.keepFiles(app.scene, kept))), Promise.resolve());
+    const models = files.filter((f) => isModelFile(f.name));
+    if (models.length > 0 && !files.some((f) => /\.json$/i.test(f.name))) {
+      // Models without a scene are added to the open scene, one after another;
+      // the other files are what they read beside them (a .gltf's .bin and images, an OBJ's .mtl).
+      const companions = new Map(files.filter((f) => !models.includes(f)).map((f) => [f.name, f] as const));
+      const keep = (kept: ReadonlyMap<string, Blob>) => void autosave.keepFiles(app.scene, kept);
+      void models.reduce<Promise<unknown>>((done, f) => done.then(() => addModelFile(app, f, keep, companions)), Promise.resolve());
       return;
     }
     const scene = files.find((f) => /\.json$/i.test(f.name)) ?? (files.length === 1 ? files[0] : undefined);
@@ -244,7 +249,8 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader, maps: Envi
     hint.hidden = true;
     if (event.defaultPrevented) return; // taken on its way here (an image dropped on a texture slot)
     event.preventDefault();
-    openFiles(event.dataTransfer?.files);
+    // A dropped folder's files (a .gltf with its .bin and images) as if dropped together.
+    void droppedFiles(event.dataTransfer).then(openFiles);
   });
 
   const examples = $<HTMLSelectElement>('examples');
@@ -278,7 +284,7 @@ function wireFiles(app: App, autosave: Autosave, loader: SceneLoader, maps: Envi
     autosave.schedule();
     const url = location.href;
     // A user's files (maps, models, texture images) cannot travel in a link: say so where the link is made.
-    const own = [...new Set(assetReferences(app.scene).filter((r) => !(r.kind === 'map' && bundledMapName(r.file))).map((r) => `"${r.file}"`))];
+    const own = userFiles(app.scene, app.assets).map((file) => `"${file}"`);
     const ownMap = own.length > 0 ? ` It names your ${own.length > 1 ? 'files' : 'file'} ${own.join(', ')}, which a link cannot carry: whoever opens it must open ${own.length > 1 ? 'those files' : 'that file'} too.` : '';
     navigator.clipboard?.writeText(url).then(
       () => notify(`Link copied: it carries the whole scene.${ownMap}`, ownMap ? 8000 : undefined),

@@ -9,60 +9,81 @@ import type { Controller } from 'lil-gui';
 import { MAX_TRIANGLES } from '../render/bvh/pack';
 import { groupMeshes, storedTriangles, trianglesIn } from '../render/bvh/groups';
 import { AssetError } from '../scene/assetError';
-import { defaultMaterial } from '../materials/registry';
+import { defaultMaterial, materialSchema, materialTextures, normalizeMaterial } from '../materials/registry';
+import { fileMaterialsOf, wearsFileMaterials } from '../scene/fileMaterials';
 import { MAX_MESHES } from '../scene/limits';
-import { formatIssue } from '../scene/schema';
+import { formatIssue, type SceneIssue } from '../scene/schema';
+import { meshWarnings, mergeAssets, type SceneAssets } from '../scene/assets';
 import { encodePly, MESH_EXTENSIONS } from '../scene/mesh';
 import { decodeMeshOffThread } from './meshDecode';
-import type { Material, Mesh, TriangleMesh, Vec3 } from '../scene/types';
+import type { Material, Mesh, Scene, TriangleMesh, Vec3 } from '../scene/types';
+import { readUserFile } from './companionFiles';
 import type { App } from './App';
 import { addSphereMaterialControls, type TextureSlots } from './materialControls';
 import { fitMesh, frameCamera, worldBoundingSphere } from './meshFit';
-import { clearError, showError } from './messages';
-import type { CompanionFiles } from './sceneLoader';
+import { clearError, notify, showError } from './messages';
+import { resolveAssets, type CompanionFiles } from './sceneLoader';
 
 export const isModelFile = (name: string) => MESH_EXTENSIONS.some((ext) => name.toLowerCase().endsWith(ext));
 
-/** Keeps the user's file with the autosave (Autosave.keepFiles). */
+/** Keeps the user's files with the autosave (Autosave.keepFiles: those the scene needs). */
 export type KeepFiles = (files: CompanionFiles) => void;
 
 /**
  * Adds a model file to the scene as a new mesh, fitted and framed, as one
- * undoable edit, and selects it. Returns whether it was added; on failure an
- * issue naming `meshes[i].file` is shown and nothing changes.
+ * undoable edit, and selects it. A model with materials of its own wears
+ * them (`material` null, version 3); one without gets an editable default.
+ * What it reads beside itself (a .gltf's .bin and images, an OBJ's .mtl)
+ * comes from `companions`, the files opened with it. Returns whether it
+ * was added; on failure an issue naming `meshes[i].file` is shown and
+ * nothing changes. What the decoder ignored is shown as a notice.
  */
-export async function addModelFile(app: App, file: File, keep: KeepFiles): Promise<boolean> {
-  const fail = (message: string) => {
-    const issue = { path: `meshes[${app.scene.meshes.length}].file`, message: `${JSON.stringify(file.name)}: ${message}` };
-    showError(`The model "${file.name}" could not be added; the scene is unchanged.`, [formatIssue(issue)]);
+export async function addModelFile(app: App, file: File, keep: KeepFiles, companions: CompanionFiles = new Map()): Promise<boolean> {
+  const index = app.scene.meshes.length;
+  const failIssues = (issues: SceneIssue[]) => {
+    showError(`The model "${file.name}" could not be added; the scene is unchanged.`, issues.map(formatIssue));
     return false;
   };
-  if (app.scene.meshes.length >= MAX_MESHES) return fail(`the scene already has ${MAX_MESHES} meshes, the most it can hold`);
+  const fail = (message: string) => failIssues([{ path: `meshes[${index}].file`, message: `${JSON.stringify(file.name)}: ${message}` }]);
+  if (index >= MAX_MESHES) return fail(`the scene already has ${MAX_MESHES} meshes, the most it can hold`);
   let data: TriangleMesh;
   try {
-    data = await decodeMeshOffThread(new Uint8Array(await file.arrayBuffer()), file.name);
+    data = await decodeMeshOffThread(await readUserFile(file), file.name, companions);
   } catch (error) {
     return fail(error instanceof AssetError ? error.message : `cannot be read (${(error as Error)?.message ?? String(error)})`);
   }
   const name = fileNameFor(app, file.name, data);
   data = app.assets.meshes.get(name) ?? data;
-  const mesh: Mesh = { file: name, material: { ...defaultMaterial(), roughness: 0.5 }, ...fitMesh(data, file.name, app.scene) };
+  const material = data.fileMaterials ? null : { ...defaultMaterial(), roughness: 0.5 };
+  const mesh: Mesh = { file: name, material, ...fitMesh(data, file.name, app.scene) };
   // A model already in the scene is stored once more only if it cannot be instanced (src/render/bvh/groups.ts).
   const trianglesOf = (f: string) => ((f === name ? data : app.assets.meshes.get(f))?.indices.length ?? 0) / 3;
   const triangles = storedTriangles({ ...app.scene, meshes: [...app.scene.meshes, mesh] }, trianglesOf);
   if (triangles > MAX_TRIANGLES) return fail(`the scene's meshes would have ${triangles} triangles; the most is ${MAX_TRIANGLES}`);
+  // The images of its own materials (embedded, or beside it among the companions), checked with the scene.
+  const files = new Map([...companions, [name, file]]);
+  const candidate: Scene = { ...app.scene, version: 3, meshes: [...app.scene.meshes, mesh] };
+  const loaded = await resolveAssets(candidate, files, mergeAssets(app.assets, { maps: new Map(), meshes: new Map([[name, data]]) }));
+  if (!loaded.ok) return failIssues(loaded.issues);
   const bounds = worldBoundingSphere(mesh, data);
   const camera = frameCamera(app.scene.camera, bounds.center, bounds.radius, app.aspect);
   clearError();
-  app.addAssets({ maps: new Map(), meshes: new Map([[name, data]]) });
+  app.addAssets(loaded.assets);
   app.edit((s) => {
-    s.version = 2;
+    s.version = Math.max(s.version, material ? 2 : 3) as Scene['version'];
     s.meshes.push(mesh);
     s.camera = camera;
   });
   app.select({ kind: 'mesh', index: app.scene.meshes.length - 1 });
-  keep(new Map([[name, file]]));
+  showMeshWarnings(app.scene, app.assets, index);
+  keep(files);
   return true;
+}
+
+/** What the scene's model files' decoders ignored (or only mesh `only`'s), as a notice: the file still renders. */
+export function showMeshWarnings(scene: Scene, assets: SceneAssets, only?: number): void {
+  const warnings = meshWarnings(scene, assets).filter((w) => only === undefined || w.path === `meshes[${only}].file`);
+  if (warnings.length > 0) notify(warnings.map(formatIssue).join(' '), 10_000);
 }
 
 /**
@@ -105,6 +126,7 @@ export function addMeshControls(folder: GUI, app: App, mesh: () => Mesh, tracked
   const triangles = decoded ? (decoded.indices.length / 3).toLocaleString('en-US') : 'not loaded';
   folder.add({ triangles }, 'triangles').name('triangles').disable();
   folder.add({ stored: storedAs(app, app.scene.meshes.indexOf(mesh())) }, 'stored').name('stored').disable();
+  addFileMaterialControls(folder, app, mesh);
   if (mesh().material) addSphereMaterialControls(folder, app, mesh as () => Mesh & { material: Material }, tracked, slots);
   const axis = (label: string, vector: () => Vec3, k: number, range?: [number, number, number]) => {
     const target = {
@@ -129,6 +151,47 @@ export function addMeshControls(folder: GUI, app: App, mesh: () => Mesh, tracked
       });
     },
   }, 'scale').step(0.001).decimals(4).name('scale'));
+}
+
+/**
+ * For a model with materials of its own: while the mesh wears them, each
+ * one's name and the textures it uses (read-only) and "one material for
+ * all", which gives the mesh one material (a principled default, then
+ * edited as any); while it wears one, "the file's materials" to go back.
+ * Each switch is one undoable edit.
+ */
+function addFileMaterialControls(folder: GUI, app: App, mesh: () => Mesh): void {
+  const data = app.assets.meshes.get(mesh().file);
+  const setMaterial = (material: Material | null) => {
+    const i = app.scene.meshes.indexOf(mesh());
+    if (i < 0) return;
+    app.edit((s) => {
+      s.meshes[i].material = material;
+      if (material === null) s.version = 3;
+    });
+  };
+  if (!data?.fileMaterials) {
+    // A model without materials wearing the default one (version 3 without `material`): made editable.
+    if (mesh().material === null) folder.add({ one: () => setMaterial(principledDefault()) }, 'one').name('one material for all');
+    return;
+  }
+  if (!wearsFileMaterials(mesh(), data)) {
+    folder.add({ wear: () => setMaterial(null) }, 'wear').name("the file's materials");
+    return;
+  }
+  const used = new Set(data.fileMaterials.triangles);
+  fileMaterialsOf(mesh(), data).forEach((m, k) => {
+    if (!used.has(k)) return; // a material no triangle wears (glTF's default for primitives without one, when none lacks it)
+    const textures = materialTextures(m.material).map((t) => `${t.key}: ${t.texture.image}`);
+    const label = m.name || `material ${k + 1}`;
+    folder.add({ value: textures.length ? textures.join(', ') : 'no textures' }, 'value').name(label).disable();
+  });
+  folder.add({ one: () => setMaterial(principledDefault()) }, 'one').name('one material for all');
+}
+
+/** The principled material with every input at its default. */
+export function principledDefault(): Material {
+  return normalizeMaterial(materialSchema('principled')!.parse({ type: 'principled' }) as Record<string, unknown>);
 }
 
 // ---------------------------------------------------------------- examples

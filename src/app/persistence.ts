@@ -9,13 +9,14 @@
  * saved again with it). Reloading the same link keeps the edits made since.
  * A saved state that cannot be trusted is discarded with a notice.
  */
-import { assetReferences, mergeAssets, NO_ASSETS, type SceneAssets } from '../scene/assets';
+import { mergeAssets, NO_ASSETS, type SceneAssets } from '../scene/assets';
 import { formatIssue } from '../scene/schema';
 import type { Scene } from '../scene/types';
 import type { App } from './App';
 import { sceneFromHash } from './files';
 import { decodeState, encodeState, linkDigest, type SavedState } from './savedState';
 import { baseName, resolveAssets, type CompanionFiles } from './sceneLoader';
+import { userFiles } from './userFiles';
 import { deleteState, loadAsset, pruneAssets, readState, saveAsset, writeState } from './store';
 import type { SafeParseResult } from '../scene/schema';
 
@@ -110,14 +111,15 @@ export class Autosave {
   }
 
   /**
-   * Keeps the user's files a just-opened scene names (by file name), so the
-   * scene reopens after a reload. A file that cannot be kept (too large,
+   * Keeps the user's files a just-opened scene needs (by file name: those
+   * it names, and the .bin, .mtl and images its models read beside them,
+   * userFiles.ts), so the scene reopens after a reload. A file that cannot be kept (too large,
    * storage full) is listed in `unsaved`: leaving the page then asks first.
    */
   async keepFiles(scene: Scene, files: CompanionFiles): Promise<void> {
-    for (const ref of assetReferences(scene)) {
-      const name = baseName(ref.file);
-      const blob = files.get(ref.file) ?? files.get(name);
+    for (const file of userFiles(scene, this.app.assets)) {
+      const name = baseName(file);
+      const blob = files.get(file) ?? files.get(name);
       if (!blob) continue; // already kept with an earlier scene
       const saved = await saveAsset(name, blob);
       if (saved.ok) {

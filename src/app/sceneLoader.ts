@@ -11,7 +11,9 @@ import { bundledMapBytes, bundledMapName } from './bundledMaps';
 import { decodeMap } from './mapDecoder';
 import { decodeImageOffThread } from '../render/images/decodeImages';
 import { SceneError, type SafeParseResult, type SceneIssue } from '../scene/schema';
-import type { EnvironmentImage, Scene } from '../scene/types';
+import type { EnvironmentImage, Scene, TriangleMesh } from '../scene/types';
+import { baseName, fileKey, readUserFile } from './companionFiles';
+import { decodeMeshOffThread } from './meshDecode';
 
 export type AssetResult = { ok: true; assets: SceneAssets } | { ok: false; issues: SceneIssue[] };
 
@@ -29,17 +31,18 @@ export type CompanionFiles = ReadonlyMap<string, Blob>;
  */
 export async function resolveAssets(scene: Scene, files: CompanionFiles, known: SceneAssets = NO_ASSETS): Promise<AssetResult> {
   const read = async (name: string) => {
-    const file = files.get(name) ?? files.get(baseName(name));
-    if (file) return new Uint8Array(await file.arrayBuffer());
+    const key = fileKey(files, name);
+    if (key !== undefined) return readUserFile(files.get(key)!);
     const bundled = bundledMapName(name);
     if (bundled) return bundledMapBytes(bundled);
-    throw new AssetError(`not opened: open or drop it together with the scene file`);
+    throw new AssetError(`not opened: open or drop it together with the scene or model that names it`);
   };
   const maps = await decodeMaps(scene, read, known);
+  const meshes = await decodeMeshes(scene, read, files, known);
   // The models are decoded (and checked) even when the map failed: every unusable file is reported at once.
   const rest = maps.issues.length ? { ...scene, environment: null } : scene;
   try {
-    const assets = await loadSceneAssets(rest, read, { maps: maps.maps, meshes: known.meshes, images: known.images }, decodeImageOffThread);
+    const assets = await loadSceneAssets(rest, read, { maps: maps.maps, meshes, images: known.images }, decodeImageOffThread);
     return maps.issues.length ? { ok: false, issues: maps.issues } : { ok: true, assets };
   } catch (error) {
     if (error instanceof SceneError) return { ok: false, issues: [...maps.issues, ...error.issues] };
@@ -63,7 +66,26 @@ async function decodeMaps(scene: Scene, read: AssetReader, known: SceneAssets): 
   return { maps, issues };
 }
 
-export const baseName = (name: string) => name.slice(name.replace(/\\/g, '/').lastIndexOf('/') + 1);
+/**
+ * The scene's models decoded in the mesh Worker, with the known ones (a
+ * .gltf reads its .bin from the files opened with it). A model that fails
+ * here is left out: loadSceneAssets decodes it again and reports it at its
+ * scene path, as for every other file.
+ */
+async function decodeMeshes(scene: Scene, read: AssetReader, files: CompanionFiles, known: SceneAssets): Promise<Map<string, TriangleMesh>> {
+  const meshes = new Map(known.meshes);
+  for (const ref of assetReferences(scene)) {
+    if (ref.kind !== 'mesh' || meshes.has(ref.file)) continue;
+    try {
+      meshes.set(ref.file, await decodeMeshOffThread(await read(ref.file), ref.file, files));
+    } catch {
+      // reported by loadSceneAssets
+    }
+  }
+  return meshes;
+}
+
+export { baseName };
 
 export class SceneLoader {
   private latest = 0;

@@ -17,10 +17,9 @@ export const STORE_NAME = 'keyval';
 export const STATE_KEY = 'autosave';
 const ASSET_PREFIX = 'asset:';
 
-/** One user file (model or map) kept with the scene: at most this many bytes. */
-export const MAX_ASSET_BYTES = 64 * 1024 * 1024;
-/** All user files kept together: at most this many bytes. */
-export const MAX_TOTAL_ASSET_BYTES = 256 * 1024 * 1024;
+import { MAX_ASSET_BYTES, MAX_TOTAL_ASSET_BYTES } from './fileLimits';
+
+export { MAX_ASSET_BYTES, MAX_TOTAL_ASSET_BYTES };
 
 export type StoreResult<T = void> = { ok: true; value: T } | { ok: false; reason: string };
 

@@ -10,6 +10,7 @@ import { History } from '../../src/app/history';
 import { parseScene } from '../../src/scene/schema';
 import { serializeScene } from '../../src/scene/serialize';
 import type { Scene } from '../../src/scene/types';
+import { NO_ASSETS } from '../../src/scene/assets';
 
 const stored = new Map<string, unknown>();
 vi.mock('../../src/app/store', () => ({
@@ -39,7 +40,7 @@ describe('texture images in the autosave', () => {
   it('keeps the images a scene names and decodes them again at start', async () => {
     // The textured example, lit by a constant (the bundled map is the page's).
     const scene: Scene = parseScene({ ...(TEXTURE_EXAMPLES.textured.scene as object), environment: { color: [1, 1, 1], intensity: 0.5 } });
-    const app = { scene, homeView: scene.camera, view: { exposure: 0, toneMap: 'aces', paused: false, targetSpp: 0, denoise: false }, history: new History<Scene>() };
+    const app = { scene, assets: NO_ASSETS, homeView: scene.camera, view: { exposure: 0, toneMap: 'aces', paused: false, targetSpp: 0, denoise: false }, history: new History<Scene>() };
     const autosave = new Autosave(app as never, () => {}, 0);
     const files = new Map([
       ['checker.png', fixture('textures/checker.png')],
@@ -62,7 +63,7 @@ describe('texture images in the autosave', () => {
 
   it('discards a saved scene whose image is no longer kept, naming it', async () => {
     const scene: Scene = parseScene({ ...(TEXTURE_EXAMPLES.textured.scene as object), environment: null });
-    const app = { scene, homeView: scene.camera, view: { exposure: 0, toneMap: 'aces', paused: false, targetSpp: 0, denoise: false }, history: new History<Scene>() };
+    const app = { scene, assets: NO_ASSETS, homeView: scene.camera, view: { exposure: 0, toneMap: 'aces', paused: false, targetSpp: 0, denoise: false }, history: new History<Scene>() };
     const autosave = new Autosave(app as never, () => {}, 0);
     await autosave.keepFiles(scene, new Map([['uvbox.obj', fixture('meshes/uvbox.obj')], ['grid.png', fixture('textures/grid.png')]]));
     await autosave.flush();

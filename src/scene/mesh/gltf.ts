@@ -64,7 +64,7 @@ async function createIO(json: GltfJson): Promise<WebIO> {
     return io.registerDependencies({ 'draco3d.decoder': await loadDracoDecoder() });
   } catch (error) {
     // In a page whose Content-Security-Policy lacks 'wasm-unsafe-eval', WebAssembly cannot compile.
-    throw new AssetError(`the file is Draco-compressed and the Draco decoder (WebAssembly) cannot run here: ${(error as Error).message}`);
+    throw new AssetError(`the file is Draco-compressed and the Draco decoder (WebAssembly) cannot run here (${(error as Error).message}): convert it to an uncompressed glTF first, e.g. \`npx @gltf-transform/cli copy in.glb out.glb\` (glTF-Transform decompresses Draco when it reads), or render it with the command-line renderer`);
   }
 }
 
