@@ -124,7 +124,8 @@ async function main(argv: string[]): Promise<void> {
       console.log(`(paused) frames from the upload on: ${await gaps(page, t2, await now(page))}`);
       await page.click('#pause');
     }
-    await page.waitForFunction(() => Number(document.querySelector('[data-testid="spp"]')?.textContent) >= 1, undefined, { timeout: 120_000 });
+    // A textured, normal-mapped model compiles a program of its own first (minutes on SwiftShader).
+    await page.waitForFunction(() => Number(document.querySelector('[data-testid="spp"]')?.textContent) >= 1, undefined, { timeout: 900_000 });
     const t3 = await now(page);
     console.log(`first sample of the mesh after upload: ${((t3 - t2) / 1000).toFixed(1)} s; ${await gaps(page, t2, t3)}`);
     s0 = await samples(page);
