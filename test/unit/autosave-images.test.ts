@@ -12,15 +12,8 @@ import { serializeScene } from '../../src/scene/serialize';
 import type { Scene } from '../../src/scene/types';
 import { NO_ASSETS } from '../../src/scene/assets';
 
-const stored = new Map<string, unknown>();
-vi.mock('../../src/app/store', () => ({
-  writeState: async (text: string) => (stored.set('autosave', text), { ok: true, value: undefined }),
-  readState: async () => ({ ok: true, value: stored.get('autosave') }),
-  deleteState: async () => ({ ok: true, value: undefined }),
-  saveAsset: async (name: string, blob: Blob) => (stored.set(`asset:${name}`, blob), { ok: true, value: undefined }),
-  loadAsset: async (name: string) => ({ ok: true, value: stored.get(`asset:${name}`) }),
-  pruneAssets: async () => ({ ok: true, value: undefined }),
-}));
+vi.mock('../../src/app/store', () => import('../support/memoryStore'));
+const { stored } = await import('../support/memoryStore');
 vi.mock('../../src/render/images/decodeImages', async () => {
   const { decodeTextureImage } = await import('../../src/scene/texture/decode');
   return { decodeImageOffThread: (bytes: Uint8Array) => decodeTextureImage(bytes) };

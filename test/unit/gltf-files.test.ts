@@ -12,15 +12,8 @@ import { parseScene } from '../../src/scene/schema';
 import type { Scene } from '../../src/scene/types';
 import { quadsGltf } from '../support/gltfQuads';
 
-const stored = new Map<string, unknown>();
-vi.mock('../../src/app/store', () => ({
-  writeState: async (text: string) => (stored.set('autosave', text), { ok: true, value: undefined }),
-  readState: async () => ({ ok: true, value: stored.get('autosave') }),
-  deleteState: async () => ({ ok: true, value: undefined }),
-  saveAsset: async (name: string, blob: Blob) => (stored.set(`asset:${name}`, blob), { ok: true, value: undefined }),
-  loadAsset: async (name: string) => ({ ok: true, value: stored.get(`asset:${name}`) }),
-  pruneAssets: async () => ({ ok: true, value: undefined }),
-}));
+vi.mock('../../src/app/store', () => import('../support/memoryStore'));
+const { stored } = await import('../support/memoryStore');
 vi.mock('../../src/render/images/decodeImages', async () => {
   const { decodeTextureImage } = await import('../../src/scene/texture/decode');
   return { decodeImageOffThread: (bytes: Uint8Array) => decodeTextureImage(bytes) };
@@ -62,7 +55,7 @@ describe("a model's files beside it", () => {
     const { 'quads.bin': _bin, ...rest } = await quadsGltf();
     const result = await resolveAssets(quadsScene(), blobs(rest));
     expect(result.ok).toBe(false);
-    if (!result.ok) expect(result.issues).toEqual([{ path: 'meshes[0].file', message: '"quads.gltf": its buffer "quads.bin" is missing (not opened: open or drop it together with the scene or model that names it): a .gltf needs its .bin beside it' }]);
+    if (!result.ok) expect(result.issues).toEqual([{ path: 'meshes[0].file', message: '"quads.gltf": its buffer "quads.bin": not opened: open or drop it together with the scene or model that names it' }]);
   });
 });
 
