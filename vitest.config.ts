@@ -1,6 +1,5 @@
 import { availableParallelism } from 'node:os';
 import { configDefaults, defineConfig } from 'vitest/config';
-import { BaseSequencer, type TestSpecification } from 'vitest/node';
 
 /**
  * Browser test files whose checks measure time on the wall or page clock
@@ -39,36 +38,6 @@ const INCLUDE = ['test/**/*.test.ts', 'src/**/*.test.ts'];
  */
 const PARALLEL = Number(process.env.PATHTRACE_TEST_WORKERS) || Math.min(4, availableParallelism());
 
-/**
- * The longest files, in seconds, as a fresh-clone run measured them
- * (2026-12-02, two at a time). A fresh clone has no vitest cache of file
- * durations, so its default order (by file size) started the two reference
- * files near the end and left one worker alone with them; these start
- * first, longest first, and the rest fill in beside them.
- */
-const LONGEST: Record<string, number> = {
-  'test/browser/references.test.ts': 393,
-  'test/browser/references-meshes.test.ts': 346,
-  'test/browser/model-references.test.ts': 227,
-  'test/browser/cli-model.test.ts': 161,
-  'test/browser/page-keepwork.test.ts': 85,
-  'test/browser/normal-map-frame.test.ts': 82,
-  'test/browser/page-textures.test.ts': 80,
-  'src/materials/dielectric/dielectric.test.ts': 57,
-  'test/browser/page-meshes.test.ts': 57,
-};
-
-class LongestFirst extends BaseSequencer {
-  override async sort(files: TestSpecification[]): Promise<TestSpecification[]> {
-    const seconds = (spec: TestSpecification) => {
-      const key = Object.keys(LONGEST).find((file) => spec.moduleId.endsWith(file));
-      return key ? LONGEST[key] : 0;
-    };
-    // Stable: the files not listed keep the default order after the listed ones.
-    return (await super.sort(files)).sort((a, b) => seconds(b) - seconds(a));
-  }
-}
-
 const shared = {
   testTimeout: 300_000,
   hookTimeout: 120_000,
@@ -76,7 +45,6 @@ const shared = {
 
 export default defineConfig({
   test: {
-    sequence: { sequencer: LongestFirst },
     projects: [
       {
         test: {
