@@ -104,8 +104,10 @@ export function resolveFileMaterials(scene: Scene, assets: SceneAssets): { scene
       meshes.push({ ...mesh, file, material: own[k].material, source: i, vertexColors: own[k].vertexColors && !!subset.colors });
     }
   });
-  if (subsets.size === 0 && lights.length === scene.lights.length) return { scene: scene as ResolvedScene, assets };
-  return { scene: { ...scene, lights, meshes }, assets: { ...assets, meshes: new Map([...assets.meshes, ...subsets]) } };
+  // A mesh without material on a file that has none gets the default: the scene changes then too.
+  const unchanged = subsets.size === 0 && lights.length === scene.lights.length && scene.meshes.every((m) => m.material);
+  if (unchanged) return { scene: scene as ResolvedScene, assets };
+  return { scene: { ...scene, lights, meshes }, assets: subsets.size === 0 ? assets : { ...assets, meshes: new Map([...assets.meshes, ...subsets]) } };
 }
 
 /** The material indices a file's triangles use, in order. */

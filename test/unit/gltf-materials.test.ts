@@ -630,3 +630,16 @@ describe('panels.glb end to end: loadSceneAssets + resolveFileMaterials', () => 
     expect(coated.opacity).toBe(1);
   });
 });
+
+describe('a version-3 mesh without material on a file that has no materials', () => {
+  it('resolves to the default material (the renderer never sees a null material)', async () => {
+    const { resolveFileMaterials } = await import('../../src/scene/fileMaterials');
+    const { parseScene } = await import('../../src/scene/schema');
+    const { defaultMaterial } = await import('../../src/materials/registry');
+    const scene = parseScene({ version: 3, camera: { position: [0, 1, 5], target: [0, 0, 0] }, meshes: [{ file: 'plain.ply' }] });
+    expect(scene.meshes[0].material).toBeNull();
+    const mesh = { positions: new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0]), normals: null, indices: new Uint32Array([0, 1, 2]) };
+    const resolved = resolveFileMaterials(scene, { maps: new Map(), meshes: new Map([['plain.ply', mesh]]), images: new Map() });
+    expect(resolved.scene.meshes.map((m) => m.material)).toEqual([defaultMaterial()]);
+  });
+});
