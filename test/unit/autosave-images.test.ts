@@ -14,10 +14,7 @@ import { NO_ASSETS } from '../../src/scene/assets';
 
 vi.mock('../../src/app/store', () => import('../support/memoryStore'));
 const { stored } = await import('../support/memoryStore');
-vi.mock('../../src/render/images/decodeImages', async () => {
-  const { decodeTextureImage } = await import('../../src/scene/texture/decode');
-  return { decodeImageOffThread: (bytes: Uint8Array) => decodeTextureImage(bytes) };
-});
+vi.mock('../../src/render/images/decodeImages', () => import('../support/nodeImageDecoder'));
 
 const { Autosave, readStartState } = await import('../../src/app/persistence');
 

@@ -152,9 +152,7 @@ describe('BVH structure', () => {
     const tex = packed.texture.data;
     const blocks = new Set<number>();
     for (let j = 0; j < packed.triangleCount; j++) {
-      let id = packed.triangleOrder[j];
-      let mesh = 0;
-      while (id >= counts[mesh]) id -= counts[mesh++];
+      const { mesh, id } = inputTriangle(packed.triangleOrder[j], counts);
       const m = meshes[mesh];
       const a = triangleData(packed, j)[7];
       expect(a >= 0, 'smooth triangles keep their normals at the attributes texel').toBe(!!m.normals);
@@ -197,9 +195,7 @@ describe('BVH structure', () => {
     const tex = packed.texture.data;
     const blocks = new Set<number>();
     for (let j = 0; j < packed.triangleCount; j++) {
-      let id = packed.triangleOrder[j];
-      let mesh = 0;
-      while (id >= counts[mesh]) id -= counts[mesh++];
+      const { mesh, id } = inputTriangle(packed.triangleOrder[j], counts);
       const m = meshes[mesh];
       const k = colorTexel(tex, j);
       expect(k >= 0, `mesh ${mesh}: colors stored exactly for colored meshes`).toBe(!!m.colors);
@@ -318,3 +314,10 @@ describe('BVH queries equal brute force', () => {
     for (let i = 0; i < 1000; i++) expectSameHits(packed, vec(r, i % 2 ? 0.5 : 2), vec(r, 1), Infinity);
   });
 });
+
+/** The input mesh that BVH input triangle `input` (the meshes' triangles concatenated) comes from, and its index there. */
+function inputTriangle(input: number, counts: number[]): { mesh: number; id: number } {
+  let [mesh, id] = [0, input];
+  while (id >= counts[mesh]) id -= counts[mesh++];
+  return { mesh, id };
+}
