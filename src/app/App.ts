@@ -8,11 +8,12 @@ import { mergeAssets, NO_ASSETS, type SceneAssets } from '../scene/assets';
 import { SnapshotKeeper } from '../render/snapshot';
 import { MAX_LIGHTS, MAX_SPHERES } from '../scene/limits';
 import { cameraRay } from '../scene/camera';
-import { pickObject, pickSurface, projectSphere, type MeshLookup, type ObjectHit, type ObjectKind } from '../scene/picking';
+import { pickObject, pickSurface, projectPoint, projectSphere, type MeshLookup, type ObjectHit, type ObjectKind } from '../scene/picking';
 import type { Camera, Scene, Vec3 } from '../scene/types';
 import { defaultMaterial } from '../materials/registry';
-import { createLight, lightExtent, lightPosition, type LightType } from '../lights/registry';
+import { createLight, lightExtent, lightPosition, type Light, type LightType } from '../lights/registry';
 import { History } from './history';
+import { draggedLight, handleNear, handlePoints, type HandleDrag, type HandleKind } from './lightHandles';
 import { LiveDenoiser } from './liveDenoise';
 import { worldBoundingSphere } from './meshFit';
 import { MeshUploads } from './meshUploads';
@@ -23,6 +24,15 @@ import type { SavedState } from './savedState';
 export interface PageView extends ViewSettings {
   denoise: boolean;
 }
+
+/** A point in CSS pixels over the canvas (from its top left). */
+export interface CanvasPoint {
+  x: number;
+  y: number;
+}
+
+/** The selected light's handles on screen, and where its aim line starts. */
+export type ScreenHandles = Partial<Record<HandleKind | 'origin', CanvasPoint>>;
 
 export interface Selection {
   kind: ObjectKind;
@@ -277,6 +287,55 @@ export class App {
     const width = this.canvas.clientWidth;
     const height = this.canvas.clientHeight;
     return { x: outline.u * width, y: outline.v * height, r: outline.radius * height };
+  }
+
+  // ------------------------------------------------------------ light handles
+
+  /** The selected light, when the selection is one. */
+  selectedLight(): Light | null {
+    const s = this.selection;
+    return s?.kind === 'light' ? (this.scene.lights[s.index] ?? null) : null;
+  }
+
+  /** The selected light's handles in CSS pixels over the canvas (those in front of the camera), or null. */
+  lightHandles(): ScreenHandles | null {
+    const light = this.selectedLight();
+    if (!light) return null;
+    const points = handlePoints(light, this.scene.camera);
+    const rect = this.canvas.getBoundingClientRect();
+    const screen = (p: Vec3 | null) => {
+      const projected = p && projectPoint(this.scene.camera, this.aspect, p);
+      return projected ? { x: projected.u * rect.width, y: projected.v * rect.height } : undefined;
+    };
+    return { move: screen(points.move), aim: screen(points.aim), origin: screen(points.origin) };
+  }
+
+  /** The selected light's handle within `radius` CSS pixels of a client point, or null. */
+  handleAt(clientX: number, clientY: number, radius: number): HandleKind | null {
+    const handles = this.lightHandles();
+    if (!handles) return null;
+    const rect = this.canvas.getBoundingClientRect();
+    return handleNear(handles, clientX - rect.left, clientY - rect.top, radius);
+  }
+
+  /** Starts dragging one of the selected light's handles (the edit is recorded at endEdit). */
+  beginHandleDrag(kind: HandleKind, clientX: number, clientY: number): HandleDrag | null {
+    const light = this.selectedLight();
+    if (!light || !this.selection) return null;
+    this.beginEdit();
+    return { kind, index: this.selection.index, light: structuredClone(light), camera: structuredClone(this.scene.camera), start: this.rayAt(clientX, clientY) };
+  }
+
+  /** Moves a dragged handle to a client point: a live edit of the light's keys (no recompile). */
+  dragHandle(drag: HandleDrag, clientX: number, clientY: number): void {
+    const light = this.scene.lights[drag.index];
+    // The light was deselected (Escape) or replaced (undo) during the drag: leave it.
+    if (!light || this.selection?.kind !== 'light' || this.selection.index !== drag.index || light.type !== drag.light.type) return;
+    const ray = this.rayAt(clientX, clientY);
+    // The aim follows visible surfaces, not the lights' own pick spheres.
+    const surface = drag.kind === 'aim' ? (pickSurface({ ...this.scene, lights: [] }, ray, this.meshLookup)?.point ?? null) : null;
+    const keys = draggedLight(drag, ray, surface);
+    if (keys) this.live(() => Object.assign(light, keys), true);
   }
 
   // ------------------------------------------------------------ resolution

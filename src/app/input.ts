@@ -2,22 +2,28 @@
  * Pointer, wheel and keyboard input on the viewport.
  * Mouse: drag orbits, right- or shift-drag pans, wheel zooms; a press on a
  * sphere or light selects it and drags it over the ground plane (shift lifts
- * it); double-click focuses the lens. Touch: one finger orbits (or drags the
- * object under it), two fingers pinch-zoom and pan.
+ * it); a press on a selected light's handle moves it in the plane facing the
+ * camera (the move handle) or aims it (the aim handle: lightHandles.ts);
+ * double-click focuses the lens. Touch: one finger orbits (or drags the
+ * object or handle under it), two fingers pinch-zoom and pan.
  */
 import { intersectPlaneY } from '../scene/picking';
 import type { App } from './App';
 import { orbit, pan, zoom } from './cameraControls';
+import type { HandleDrag } from './lightHandles';
 
 type Gesture =
   | { type: 'orbit' | 'pan'; moved: boolean }
   | { type: 'object'; moved: boolean }
+  | { type: 'handle'; moved: boolean; drag: HandleDrag }
   | { type: 'pinch'; moved: boolean; distance: number; midX: number; midY: number };
 
 /** Radians of orbit per CSS pixel. */
 const ORBIT_SPEED = 0.008;
 /** Pixels a press may wander and still count as a click. */
 const CLICK_SLOP = 3;
+/** CSS pixels from a handle's centre that still grab it (a finger is less precise). */
+const HANDLE_REACH = { mouse: 9, touch: 18 };
 
 export function attachInput(app: App, canvas: HTMLCanvasElement): void {
   const pointers = new Map<number, { x: number; y: number; startX: number; startY: number }>();
@@ -27,7 +33,8 @@ export function attachInput(app: App, canvas: HTMLCanvasElement): void {
   const heightPx = () => Math.max(1, canvas.clientHeight);
 
   const finish = () => {
-    if (gesture?.moved) app.endEdit();
+    // A handle press opened an edit even if it never moved: close it.
+    if (gesture?.moved || gesture?.type === 'handle') app.endEdit();
     gesture = null;
   };
 
@@ -46,6 +53,13 @@ export function attachInput(app: App, canvas: HTMLCanvasElement): void {
       return;
     }
     if (pointers.size > 2) return;
+    // The selected light's handles come before what lies under them; anywhere else the press orbits, pans or picks as before.
+    const handle = event.button === 0 && !event.shiftKey ? app.handleAt(event.clientX, event.clientY, handleReach(event)) : null;
+    const drag = handle && app.beginHandleDrag(handle, event.clientX, event.clientY);
+    if (drag) {
+      gesture = { type: 'handle', moved: false, drag };
+      return;
+    }
     const hit = event.button === 0 ? app.pick(event.clientX, event.clientY) : null;
     if (hit) {
       app.select({ kind: hit.kind, index: hit.index });
@@ -59,6 +73,7 @@ export function attachInput(app: App, canvas: HTMLCanvasElement): void {
 
   canvas.addEventListener('pointermove', (event) => {
     const pointer = pointers.get(event.pointerId);
+    if (pointers.size === 0) canvas.classList.toggle('over-handle', app.handleAt(event.clientX, event.clientY, handleReach(event)) !== null);
     if (!pointer || !gesture) return;
     const dx = event.clientX - pointer.x;
     const dy = event.clientY - pointer.y;
@@ -76,6 +91,9 @@ export function attachInput(app: App, canvas: HTMLCanvasElement): void {
         break;
       case 'object':
         moveObject(app, previous, { x: event.clientX, y: event.clientY }, event.shiftKey, heightPx());
+        break;
+      case 'handle':
+        app.dragHandle(gesture.drag, event.clientX, event.clientY);
         break;
       case 'pinch': {
         const [a, b] = [...pointers.values()];
@@ -116,6 +134,8 @@ export function attachInput(app: App, canvas: HTMLCanvasElement): void {
     { passive: false },
   );
 }
+
+const handleReach = (event: PointerEvent) => (event.pointerType === 'touch' ? HANDLE_REACH.touch : HANDLE_REACH.mouse);
 
 /** Drags the selected object over the horizontal plane through its centre, or lifts it (shift). */
 function moveObject(app: App, from: { x: number; y: number }, to: { x: number; y: number }, lift: boolean, heightPx: number): void {

@@ -347,23 +347,47 @@ function wireContextLoss(app: App): void {
   });
 }
 
-// ---------------------------------------------------------------- selection outline
+// ---------------------------------------------------------------- selection outline and light handles
 
 function wireOverlay(app: App): void {
   const svg = $('overlay') as unknown as SVGSVGElement;
-  const dark = document.createElementNS(SVG_NS, 'circle');
-  const light = document.createElementNS(SVG_NS, 'circle');
-  dark.setAttribute('class', 'outline-dark');
-  light.setAttribute('class', 'outline');
-  svg.append(dark, light);
+  const element = (tag: string, className: string, testId?: string) => {
+    const e = document.createElementNS(SVG_NS, tag);
+    e.setAttribute('class', className);
+    if (testId) e.dataset.testid = testId;
+    return e;
+  };
+  const dark = element('circle', 'outline-dark');
+  const light = element('circle', 'outline');
+  // The selected light's aim line and handles (lightHandles.ts): drawn here, dragged through the canvas's input.
+  const aimLineDark = element('line', 'aim-line-dark');
+  const aimLine = element('line', 'aim-line');
+  const moveHandle = element('circle', 'handle handle-move', 'move-handle');
+  const aimHandle = element('circle', 'handle handle-aim', 'aim-handle');
+  svg.append(dark, light, aimLineDark, aimLine, moveHandle, aimHandle);
+  const place = (circle: Element, at: { x: number; y: number } | undefined, r: number) => {
+    circle.setAttribute('display', at ? 'inline' : 'none');
+    if (!at) return;
+    circle.setAttribute('cx', at.x.toFixed(1));
+    circle.setAttribute('cy', at.y.toFixed(1));
+    circle.setAttribute('r', String(r));
+  };
   const draw = () => {
     const outline = app.selectionOutline();
-    svg.style.display = outline ? '' : 'none';
-    if (!outline) return;
-    for (const circle of [dark, light]) {
-      circle.setAttribute('cx', outline.x.toFixed(1));
-      circle.setAttribute('cy', outline.y.toFixed(1));
-      circle.setAttribute('r', Math.max(4, outline.r + 3).toFixed(1));
+    const handles = app.lightHandles();
+    svg.style.display = outline || handles ? '' : 'none';
+    for (const circle of [dark, light]) place(circle, outline ? { x: outline.x, y: outline.y } : undefined, Math.max(4, (outline?.r ?? 0) + 3));
+    place(moveHandle, handles?.move, 6);
+    place(aimHandle, handles?.aim, 5);
+    const from = handles?.origin;
+    const to = handles?.aim;
+    for (const line of [aimLineDark, aimLine]) {
+      line.setAttribute('display', from && to ? 'inline' : 'none');
+      if (!from || !to) continue;
+      line.setAttribute('x1', from.x.toFixed(1));
+      line.setAttribute('y1', from.y.toFixed(1));
+      line.setAttribute('x2', to.x.toFixed(1));
+      line.setAttribute('y2', to.y.toFixed(1));
     }
   };
   app.onChange(draw);
