@@ -1,0 +1,171 @@
+/**
+ * The selected light's handles on the page (src/app/lightHandles.ts): a
+ * spot's move handle drags it in the plane facing the camera, its aim
+ * handle puts its target on the ground under the cursor, a directional
+ * light's handle turns it; each drag is one undo step, restarts the
+ * accumulation, never links a program, and reaches the autosave; a drag
+ * away from the handles still orbits. A spheres-only scene with one spot
+ * and one directional light (both delta lights: a small program), rendered
+ * at 160 pixels.
+ */
+import type { Page } from 'playwright-core';
+import { describe, expect, it } from 'vitest';
+import { shareHash } from '../../src/app/files';
+import { draggedLight, handlePoints } from '../../src/app/lightHandles';
+import type { Light } from '../../src/lights/registry';
+import { cameraRay } from '../../src/scene/camera';
+import { projectPoint } from '../../src/scene/picking';
+import { parseScene } from '../../src/scene/schema';
+import type { Vec3 } from '../../src/scene/types';
+import { canvasPoint, drag, instrument, openPage, probe, savedScene, usePageHarness, waitForRestart, waitForSpp, watchRestarts } from '../support/page';
+
+const harness = usePageHarness();
+
+const SPOT = { type: 'spot', position: [1.5, 3, 1.5], target: [0, 0.5, 0], color: [1, 1, 1], intensity: 30, cutoffAngle: 30, beamWidth: 20 };
+const SUN = { type: 'directional', direction: [0.4, -1, -0.2], color: [1, 1, 1], irradiance: 0.5 };
+const scene = parseScene({
+  version: 3,
+  camera: { position: [0, 2.2, 7.5], target: [0, 0.8, 0], up: [0, 1, 0], fov: 38 },
+  image: { width: 256, height: 192 },
+  render: { maxBounces: 3 },
+  environment: { color: [0.55, 0.7, 1.0], intensity: 0.2 },
+  ground: { height: 0, material: { color: [0.75, 0.75, 0.72], roughness: 1 } },
+  lights: [SPOT, SUN],
+  spheres: [
+    { center: [-1.2, 0.8, 0], radius: 0.8, material: { color: [0.85, 0.2, 0.2], roughness: 1 } },
+    { center: [1.2, 0.6, -0.4], radius: 0.6, material: { color: [0.9, 0.75, 0.3], roughness: 0.4 } },
+  ],
+});
+const aspect = scene.image.width / scene.image.height;
+
+type Lights = { type: string; position?: Vec3; target?: Vec3; direction?: Vec3 }[];
+const lights = async (page: Page) => (await savedScene(page)).lights as Lights;
+
+/** A handle's centre in client pixels (the overlay lies over the canvas), or null while it is hidden. */
+async function handle(page: Page, testId: 'move-handle' | 'aim-handle'): Promise<{ x: number; y: number } | null> {
+  const circle = page.getByTestId(testId);
+  if ((await circle.getAttribute('display')) !== 'inline' || !(await page.locator('#overlay').isVisible())) return null;
+  const box = (await page.locator('#overlay').boundingBox())!;
+  return { x: box.x + Number(await circle.getAttribute('cx')), y: box.y + Number(await circle.getAttribute('cy')) };
+}
+
+/** Rounded to whole pixels: the mouse is moved there, and the expected result is computed for the same point. */
+const whole = (p: { x: number; y: number }) => ({ x: Math.round(p.x), y: Math.round(p.y) });
+
+/** Drags from `from` to `to` and waits for the accumulation to restart (each drag re-uploads the scene). */
+async function dragTo(page: Page, from: { x: number; y: number }, to: { x: number; y: number }): Promise<void> {
+  const restarts = await watchRestarts(page);
+  await drag(page, from, to.x - from.x, to.y - from.y);
+  await waitForRestart(restarts);
+}
+
+describe('page: light handles', () => {
+  it('moves and aims a spot and turns a directional light by their handles, one undo step each, with no recompile', async () => {
+    const started = performance.now();
+    const { page, errors } = await openPage(harness(), { hash: shareHash(scene), initScript: instrument });
+    await expect.poll(async () => (await lights(page)).map((l) => l.type), { timeout: 120_000 }).toEqual(['spot', 'directional']);
+    await waitForSpp(page, 2, 120_000);
+    const linksLoaded = (await probe(page)).links;
+    const box = (await page.getByTestId('viewport').boundingBox())!;
+    /** The image point of a client point (as the page's rayAt computes it). */
+    const ray = (p: { x: number; y: number }) => cameraRay(scene.camera, aspect, (p.x - box.x) / box.width, (p.y - box.y) / box.height);
+
+    // Click the spot to select it: its handles appear, the move handle where the light is drawn.
+    const spotAt = projectPoint(scene.camera, aspect, SPOT.position as Vec3)!;
+    const click = await canvasPoint(page, spotAt.u, spotAt.v);
+    expect(await handle(page, 'move-handle')).toBeNull();
+    await page.mouse.click(click.x, click.y);
+    await expect.poll(() => handle(page, 'move-handle')).not.toBeNull();
+    const move = (await handle(page, 'move-handle'))!;
+    expect(Math.hypot(move.x - click.x, move.y - click.y)).toBeLessThan(1);
+
+    // The move handle: the light follows the cursor in the plane facing the camera.
+    const moveFrom = whole(move);
+    const moveTo = { x: moveFrom.x + 40, y: moveFrom.y - 30 };
+    await dragTo(page, moveFrom, moveTo);
+    const spotLight = structuredClone(scene.lights[0]);
+    const expectedMove = draggedLight({ kind: 'move', index: 0, light: spotLight, camera: scene.camera, start: ray(moveFrom) }, ray(moveTo), null) as { position: Vec3 };
+    let now = await lights(page);
+    now[0].position!.forEach((x, i) => expect(x).toBeCloseTo(expectedMove.position[i], 3));
+    // Under the cursor (less the grab's offset from the handle's centre), at the same depth.
+    const movedAt = projectPoint(scene.camera, aspect, now[0].position!)!;
+    const grab = { x: moveFrom.x - move.x, y: moveFrom.y - move.y };
+    expect(Math.hypot(box.x + movedAt.u * box.width + grab.x - moveTo.x, box.y + movedAt.v * box.height + grab.y - moveTo.y)).toBeLessThan(0.1);
+    expect(movedAt.depth).toBeCloseTo(spotAt.depth, 3);
+    expect(now[0].target).toEqual(SPOT.target);
+    const moved = now[0].position!;
+    await page.keyboard.press('Control+z');
+    expect((await lights(page))[0].position, 'one undo puts it back').toEqual(SPOT.position);
+    await page.keyboard.press('Control+Shift+z');
+    expect((await lights(page))[0].position).toEqual(moved);
+
+    // The aim handle: the target goes onto the ground under the cursor.
+    const aim = whole((await handle(page, 'aim-handle'))!);
+    const targetAt = projectPoint(scene.camera, aspect, SPOT.target as Vec3)!;
+    expect(Math.hypot(aim.x - (box.x + targetAt.u * box.width), aim.y - (box.y + targetAt.v * box.height))).toBeLessThan(1);
+    const groundPoint: Vec3 = [-0.2, 0, 2];
+    const ground = projectPoint(scene.camera, aspect, groundPoint)!;
+    const aimTo = whole(await canvasPoint(page, ground.u, ground.v));
+    await dragTo(page, aim, aimTo);
+    now = await lights(page);
+    expect(now[0].target![1], 'on the ground').toBeCloseTo(0, 9);
+    now[0].target!.forEach((x, i) => expect(x).toBeCloseTo(groundPoint[i], 1));
+    expect(now[0].position).toEqual(moved);
+    await page.keyboard.press('Control+z');
+    expect((await lights(page))[0], 'one undo restores the target, keeps the move').toMatchObject({ position: moved, target: SPOT.target });
+
+    // A directional light (added: the scene has one already, so the same program) turns with its handle.
+    await page.selectOption('#light-kind', 'directional');
+    await page.click('#add-light');
+    await expect.poll(async () => (await lights(page)).length).toBe(3);
+    const added = (await lights(page))[2] as unknown as Extract<Light, { type: 'directional' }>;
+    expect(await handle(page, 'move-handle'), 'no position: no move handle').toBeNull();
+    const sunFrom = whole((await handle(page, 'aim-handle'))!);
+    const sunTo = { x: sunFrom.x - 50, y: sunFrom.y + 35 };
+    await dragTo(page, sunFrom, sunTo);
+    const expectedSun = draggedLight({ kind: 'aim', index: 2, light: added, camera: scene.camera, start: ray(sunFrom) }, ray(sunTo), null) as { direction: Vec3 };
+    const sun = (await lights(page))[2].direction!;
+    sun.forEach((x, i) => expect(x).toBeCloseTo(expectedSun.direction[i], 3));
+    const unitBefore = added.direction.map((x) => x / Math.hypot(...added.direction));
+    expect(Math.hypot(...sun.map((x, i) => x - unitBefore[i])), 'turned').toBeGreaterThan(0.2);
+    // Where the handle is drawn now is where the math puts it.
+    const drawn = (await handle(page, 'aim-handle'))!;
+    const sunHandle = projectPoint(scene.camera, aspect, handlePoints({ ...added, direction: sun }, scene.camera).aim!)!;
+    expect(Math.hypot(drawn.x - (box.x + sunHandle.u * box.width), drawn.y - (box.y + sunHandle.v * box.height))).toBeLessThan(1);
+    await page.keyboard.press('Control+z');
+    expect((await lights(page))[2].direction, 'one undo turns it back').toEqual(added.direction);
+
+    // The autosave holds the edits (its record: src/app/persistence.ts).
+    await page.waitForFunction(() => document.body.dataset.saved === 'saved');
+    const autosaved = await page.evaluate(
+      () =>
+        new Promise<string>((resolve, reject) => {
+          const open = indexedDB.open('pathtrace');
+          open.onerror = () => reject(open.error);
+          open.onsuccess = () => {
+            const get = open.result.transaction('keyval').objectStore('keyval').get('autosave');
+            get.onsuccess = () => resolve(get.result as string);
+            get.onerror = () => reject(get.error);
+          };
+        }),
+    );
+    expect((JSON.parse(autosaved).scene as { lights: Lights }).lights).toEqual(await lights(page));
+
+    // Away from the handles a drag still orbits, and leaves the light where it is.
+    const before = await savedScene(page);
+    const sky = whole(await canvasPoint(page, 0.9, 0.1));
+    await dragTo(page, sky, { x: sky.x - 60, y: sky.y + 10 });
+    const after = await savedScene(page);
+    expect(after.camera).not.toEqual(before.camera);
+    expect(after.lights).toEqual(before.lights);
+    // Escape deselects: the handles go.
+    await page.keyboard.press('Escape');
+    await expect.poll(() => handle(page, 'aim-handle')).toBeNull();
+
+    await waitForSpp(page, 2);
+    expect((await probe(page)).links - linksLoaded, 'handle drags, undo and redo link no program').toBe(0);
+    expect(errors).toEqual([]);
+    await page.close();
+    console.log(`light handles: ${((performance.now() - started) / 1000).toFixed(1)} s`);
+  }, 300_000);
+});
