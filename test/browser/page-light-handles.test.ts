@@ -4,14 +4,14 @@
  * handle puts its target on the ground under the cursor, a directional
  * light's handle turns it; each drag is one undo step, restarts the
  * accumulation, never links a program, and reaches the autosave; a drag
- * away from the handles still orbits. A spheres-only scene with one spot
- * and one directional light (both delta lights: a small program), rendered
- * at 160 pixels.
+ * away from the handles still orbits; a rectangle's aim handle turns it to
+ * face the ground under the cursor. A scene of spheres with one spot, one
+ * rectangle and one directional light, rendered at 160 pixels.
  */
 import type { Page } from 'playwright-core';
 import { describe, expect, it } from 'vitest';
 import { shareHash } from '../../src/app/files';
-import { draggedLight, handlePoints } from '../../src/app/lightHandles';
+import { draggedLight, emitDirection, handlePoints } from '../../src/app/lightHandles';
 import type { Light } from '../../src/lights/registry';
 import { cameraRay } from '../../src/scene/camera';
 import { projectPoint } from '../../src/scene/picking';
@@ -22,6 +22,7 @@ import { canvasPoint, drag, instrument, openPage, probe, savedScene, usePageHarn
 const harness = usePageHarness();
 
 const SPOT = { type: 'spot', position: [1.5, 3, 1.5], target: [0, 0.5, 0], color: [1, 1, 1], intensity: 30, cutoffAngle: 30, beamWidth: 20 };
+const PANEL = { type: 'rectangle', position: [-1.8, 2.4, 1.2], rotation: [0, 0, 0], size: [0.5, 0.5], color: [1, 1, 1], intensity: 4 };
 const SUN = { type: 'directional', direction: [0.4, -1, -0.2], color: [1, 1, 1], irradiance: 0.5 };
 const scene = parseScene({
   version: 3,
@@ -30,7 +31,7 @@ const scene = parseScene({
   render: { maxBounces: 3 },
   environment: { color: [0.55, 0.7, 1.0], intensity: 0.2 },
   ground: { height: 0, material: { color: [0.75, 0.75, 0.72], roughness: 1 } },
-  lights: [SPOT, SUN],
+  lights: [SPOT, PANEL, SUN],
   spheres: [
     { center: [-1.2, 0.8, 0], radius: 0.8, material: { color: [0.85, 0.2, 0.2], roughness: 1 } },
     { center: [1.2, 0.6, -0.4], radius: 0.6, material: { color: [0.9, 0.75, 0.3], roughness: 0.4 } },
@@ -63,7 +64,7 @@ describe('page: light handles', () => {
   it('moves and aims a spot and turns a directional light by their handles, one undo step each, with no recompile', async () => {
     const started = performance.now();
     const { page, errors } = await openPage(harness(), { hash: shareHash(scene), initScript: instrument });
-    await expect.poll(async () => (await lights(page)).map((l) => l.type), { timeout: 120_000 }).toEqual(['spot', 'directional']);
+    await expect.poll(async () => (await lights(page)).map((l) => l.type), { timeout: 120_000 }).toEqual(['spot', 'rectangle', 'directional']);
     await waitForSpp(page, 2, 120_000);
     const linksLoaded = (await probe(page)).links;
     const box = (await page.getByTestId('viewport').boundingBox())!;
@@ -114,17 +115,40 @@ describe('page: light handles', () => {
     await page.keyboard.press('Control+z');
     expect((await lights(page))[0], 'one undo restores the target, keeps the move').toMatchObject({ position: moved, target: SPOT.target });
 
+    // A rectangle: click it to select it, then aim it at the ground under the cursor (its rotation turns).
+    const panelAt = projectPoint(scene.camera, aspect, PANEL.position as Vec3)!;
+    const panelClick = whole(await canvasPoint(page, panelAt.u + 0.01, panelAt.v));
+    await page.mouse.click(panelClick.x, panelClick.y);
+    const panelCenter = await canvasPoint(page, panelAt.u, panelAt.v);
+    const fromPanel = async () => {
+      const h = await handle(page, 'move-handle');
+      return h ? Math.hypot(h.x - panelCenter.x, h.y - panelCenter.y) : Infinity;
+    };
+    await expect.poll(fromPanel, { message: 'the rectangle is selected: its move handle on it' }).toBeLessThan(1);
+    const panelAim = whole((await handle(page, 'aim-handle'))!);
+    const floor: Vec3 = [-0.6, 0, 2.2];
+    const floorAt = projectPoint(scene.camera, aspect, floor)!;
+    await dragTo(page, panelAim, whole(await canvasPoint(page, floorAt.u, floorAt.v)));
+    const panel = (await lights(page))[1] as unknown as { position: Vec3; rotation: Vec3 };
+    expect(panel.position).toEqual(PANEL.position);
+    const facing = emitDirection(panel.rotation);
+    const wanted = floor.map((x, i) => x - PANEL.position[i]);
+    const cosine = (facing[0] * wanted[0] + facing[1] * wanted[1] + facing[2] * wanted[2]) / Math.hypot(...wanted);
+    expect(cosine, 'faces the ground point').toBeGreaterThan(0.999);
+    await page.keyboard.press('Control+z');
+    expect((await lights(page))[1], 'one undo turns it back').toEqual(PANEL);
+
     // A directional light (added: the scene has one already, so the same program) turns with its handle.
     await page.selectOption('#light-kind', 'directional');
     await page.click('#add-light');
-    await expect.poll(async () => (await lights(page)).length).toBe(3);
-    const added = (await lights(page))[2] as unknown as Extract<Light, { type: 'directional' }>;
+    await expect.poll(async () => (await lights(page)).length).toBe(4);
+    const added = (await lights(page))[3] as unknown as Extract<Light, { type: 'directional' }>;
     expect(await handle(page, 'move-handle'), 'no position: no move handle').toBeNull();
     const sunFrom = whole((await handle(page, 'aim-handle'))!);
     const sunTo = { x: sunFrom.x - 50, y: sunFrom.y + 35 };
     await dragTo(page, sunFrom, sunTo);
-    const expectedSun = draggedLight({ kind: 'aim', index: 2, light: added, camera: scene.camera, start: ray(sunFrom) }, ray(sunTo), null) as { direction: Vec3 };
-    const sun = (await lights(page))[2].direction!;
+    const expectedSun = draggedLight({ kind: 'aim', index: 3, light: added, camera: scene.camera, start: ray(sunFrom) }, ray(sunTo), null) as { direction: Vec3 };
+    const sun = (await lights(page))[3].direction!;
     sun.forEach((x, i) => expect(x).toBeCloseTo(expectedSun.direction[i], 3));
     const unitBefore = added.direction.map((x) => x / Math.hypot(...added.direction));
     expect(Math.hypot(...sun.map((x, i) => x - unitBefore[i])), 'turned').toBeGreaterThan(0.2);
@@ -133,7 +157,7 @@ describe('page: light handles', () => {
     const sunHandle = projectPoint(scene.camera, aspect, handlePoints({ ...added, direction: sun }, scene.camera).aim!)!;
     expect(Math.hypot(drawn.x - (box.x + sunHandle.u * box.width), drawn.y - (box.y + sunHandle.v * box.height))).toBeLessThan(1);
     await page.keyboard.press('Control+z');
-    expect((await lights(page))[2].direction, 'one undo turns it back').toEqual(added.direction);
+    expect((await lights(page))[3].direction, 'one undo turns it back').toEqual(added.direction);
 
     // The autosave holds the edits (its record: src/app/persistence.ts).
     await page.waitForFunction(() => document.body.dataset.saved === 'saved');
