@@ -53,7 +53,8 @@ export function attachInput(app: App, canvas: HTMLCanvasElement): void {
       return;
     }
     if (pointers.size > 2) return;
-    // The selected light's handles come before what lies under them; anywhere else the press orbits, pans or picks as before.
+    // The selected light's handles come before what lies under them (shift keeps lifting the light or panning);
+    // anywhere else the press orbits, pans or picks as before.
     const handle = event.button === 0 && !event.shiftKey ? app.handleAt(event.clientX, event.clientY, handleReach(event)) : null;
     const drag = handle && app.beginHandleDrag(handle, event.clientX, event.clientY);
     if (drag) {
