@@ -49,7 +49,7 @@ export function emitDirection(rotation: Vec3): Vec3 {
   return matrixTimes(rotationMatrix(rotation), [0, -1, 0]);
 }
 
-/** The selected light's handles (null: it has none). */
+/** A light's handles in the world (null where it has none: a directional light has no move handle, a sphere or point light no aim). */
 export function handlePoints(light: Light, camera: Camera): HandlePoints {
   switch (light.type) {
     case 'spot':
