@@ -5,7 +5,7 @@ import { defineRecord, packRecord, recordGlsl } from '../../src/render/layout/re
 import {
   BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, HEADER, MATERIAL, MAX_GUIDES, MAX_SCENE_SPHERES, MESH, SECTIONS, SPHERE,
 } from '../../src/render/layout/scene';
-import { BASE_FEATURES } from '../../src/render/packScene';
+import { BASE_FEATURES, emitterChoiceWeights } from '../../src/render/packScene';
 import { materialGlsl, unpackMaterial } from '../../src/materials/registry';
 import { packScene } from '../../src/render/packScene';
 import { parseScene } from '../../src/scene/schema';
@@ -205,6 +205,24 @@ describe('buildAliasTable', () => {
 
   it('keeps every index (the plain uniform choice) for equal weights', () => {
     expect(buildAliasTable([2, 2, 2]).threshold).toEqual([1, 1, 1]);
+  });
+});
+
+describe('emitterChoiceWeights', () => {
+  it('is the powers without a delta light, half power share and half uniform with one', () => {
+    expect(emitterChoiceWeights([1, 3], false)).toEqual([1, 3]);
+    const mixed = emitterChoiceWeights([1, 3], true);
+    expect(mixed[0]).toBeCloseTo(0.5 * 0.25 + 0.25, 12);
+    expect(mixed[1]).toBeCloseTo(0.5 * 0.75 + 0.25, 12);
+    // No probability falls below half the uniform one, however weak the light.
+    const weak = emitterChoiceWeights([1e-9, 1, 1, 1], true);
+    expect(weak[0] / weak.reduce((a, b) => a + b, 0)).toBeGreaterThanOrEqual(0.5 / 4);
+  });
+
+  it('keeps a version-2 scene of sphere lights on the choice by power', () => {
+    const scene = parseScene({ camera, lights: [{ position: [0, 4, 0], radius: 0.5, intensity: 10 }, { position: [2, 4, 0], radius: 0.5, intensity: 30 }] });
+    const pdfs = [0, 1].map((i) => readRecord(packScene(scene).data, SECTIONS.spheres, SPHERE, i).emitterPdf as number);
+    expect(pdfs[1] / pdfs[0]).toBeCloseTo(3, 5);
   });
 });
 
