@@ -238,7 +238,7 @@ describe('page: light handles', () => {
     // A drag from another's marker selects that one and turns it (as its aim handle would), the camera left alone.
     const otherFrom = whole(await sunMarker(page, 3));
     const otherTo = { x: otherFrom.x + 45, y: otherFrom.y - 25 };
-    await dragTo(page, otherFrom, otherTo);
+    await drag(page, otherFrom, otherTo.x - otherFrom.x, otherTo.y - otherFrom.y);
     await expect.poll(() => page.locator('#panel').textContent()).toContain('Selected light 4');
     const turned = await savedScene(page);
     expect(turned.camera, 'no orbit').toEqual(after.camera);
