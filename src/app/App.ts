@@ -13,7 +13,7 @@ import type { Camera, Scene, Vec3 } from '../scene/types';
 import { defaultMaterial } from '../materials/registry';
 import { createLight, lightExtent, lightPosition, type Light, type LightType } from '../lights/registry';
 import { History } from './history';
-import { draggedLight, handleNear, handlePoints, type HandleDrag, type HandleKind } from './lightHandles';
+import { draggedLight, handleNear, handlePoints, markerNear, sunMarkers, type HandleDrag, type HandleKind } from './lightHandles';
 import { LiveDenoiser } from './liveDenoise';
 import { worldBoundingSphere } from './meshFit';
 import { MeshUploads } from './meshUploads';
@@ -145,6 +145,13 @@ export class App {
     this.editBefore = null;
     if (before && JSON.stringify(before) !== JSON.stringify(this.scene)) this.history.record(before);
     this.changed();
+  }
+
+  /** Abandons the current edit (Escape during a drag): the scene goes back to how it was before it, and no undo step is recorded. */
+  cancelEdit(): void {
+    const before = this.editBefore;
+    this.editBefore = null;
+    if (before && JSON.stringify(before) !== JSON.stringify(this.scene)) this.replaceScene(before);
   }
 
   /** A continuous edit step (drag, slider): applies it now, recorded at endEdit. */
@@ -303,11 +310,29 @@ export class App {
     if (!light) return null;
     const points = handlePoints(light, this.scene.camera);
     const rect = this.canvas.getBoundingClientRect();
-    const screen = (p: Vec3 | null) => {
-      const projected = p && projectPoint(this.scene.camera, this.aspect, p);
-      return projected ? { x: projected.u * rect.width, y: projected.v * rect.height } : undefined;
-    };
+    const screen = (p: Vec3 | null) => (p ? this.canvasPointOf(p, rect) : undefined);
     return { move: screen(points.move), aim: screen(points.aim), origin: screen(points.origin) };
+  }
+
+  /** Where a world point is seen, in CSS pixels over the canvas (`rect`: its box), or undefined behind the camera. */
+  private canvasPointOf(p: Vec3, rect: DOMRect): CanvasPoint | undefined {
+    const projected = projectPoint(this.scene.camera, this.aspect, p);
+    return projected ? { x: projected.u * rect.width, y: projected.v * rect.height } : undefined;
+  }
+
+  /** Every directional light's marker (its "sun") in CSS pixels over the canvas, those in front of the camera. */
+  sunMarkers(): (CanvasPoint & { index: number })[] {
+    const rect = this.canvas.getBoundingClientRect();
+    return sunMarkers(this.scene.lights, this.scene.camera).flatMap(({ index, point }) => {
+      const at = this.canvasPointOf(point, rect);
+      return at ? [{ index, ...at }] : [];
+    });
+  }
+
+  /** The index of the directional light whose marker is within `radius` CSS pixels of a client point, or null. */
+  sunMarkerAt(clientX: number, clientY: number, radius: number): number | null {
+    const rect = this.canvas.getBoundingClientRect();
+    return markerNear(this.sunMarkers(), clientX - rect.left, clientY - rect.top, radius);
   }
 
   /** The selected light's handle within `radius` CSS pixels of a client point, or null. */
@@ -329,7 +354,7 @@ export class App {
   /** Moves a dragged handle to a client point: a live edit of the light's keys (no recompile). */
   dragHandle(drag: HandleDrag, clientX: number, clientY: number): void {
     const light = this.scene.lights[drag.index];
-    // The light was deselected (Escape) or replaced (undo) during the drag: leave it.
+    // The light was deselected or replaced (undo) during the drag: leave it.
     if (!light || this.selection?.kind !== 'light' || this.selection.index !== drag.index || light.type !== drag.light.type) return;
     const ray = this.rayAt(clientX, clientY);
     // The aim follows visible surfaces, not the lights' own pick spheres.

@@ -3,8 +3,10 @@
  * Mouse: drag orbits, right- or shift-drag pans, wheel zooms; a press on a
  * sphere or light selects it and drags it over the ground plane (shift lifts
  * it); a press on a selected light's handle moves it in the plane facing the
- * camera (the move handle) or aims it (the aim handle: lightHandles.ts);
- * double-click focuses the lens. Touch: one finger orbits (or drags the
+ * camera (the move handle) or aims it (the aim handle: lightHandles.ts); a
+ * press on a directional light's marker (its "sun") selects it and aims it
+ * the same way; Escape during a handle or object drag cancels it (the
+ * scene goes back, no undo step), else deselects; double-click focuses the lens. Touch: one finger orbits (or drags the
  * object or handle under it), two fingers pinch-zoom and pan.
  */
 import { intersectPlaneY } from '../scene/picking';
@@ -25,7 +27,13 @@ const CLICK_SLOP = 3;
 /** CSS pixels from a handle's centre that still grab it (a finger is less precise). */
 const HANDLE_REACH = { mouse: 9, touch: 18 };
 
-export function attachInput(app: App, canvas: HTMLCanvasElement): void {
+/** What the keyboard needs of the pointer input. */
+export interface ViewportInput {
+  /** Cancels a handle or object drag in progress (the scene goes back, no undo step); false if none is. */
+  cancelDrag(): boolean;
+}
+
+export function attachInput(app: App, canvas: HTMLCanvasElement): ViewportInput {
   const pointers = new Map<number, { x: number; y: number; startX: number; startY: number }>();
   let gesture: Gesture | null = null;
   let wheelTimer = 0;
@@ -53,10 +61,9 @@ export function attachInput(app: App, canvas: HTMLCanvasElement): void {
       return;
     }
     if (pointers.size > 2) return;
-    // The selected light's handles come before what lies under them (shift keeps lifting the light or panning);
-    // anywhere else the press orbits, pans or picks as before.
-    const handle = event.button === 0 && !event.shiftKey ? app.handleAt(event.clientX, event.clientY, handleReach(event)) : null;
-    const drag = handle && app.beginHandleDrag(handle, event.clientX, event.clientY);
+    // The selected light's handles and the directional lights' markers come before what lies under them (shift
+    // keeps lifting the light or panning); anywhere else the press orbits, pans or picks as before.
+    const drag = event.button === 0 && !event.shiftKey ? handleDragAt(app, event.clientX, event.clientY, handleReach(event)) : null;
     if (drag) {
       gesture = { type: 'handle', moved: false, drag };
       return;
@@ -74,7 +81,7 @@ export function attachInput(app: App, canvas: HTMLCanvasElement): void {
 
   canvas.addEventListener('pointermove', (event) => {
     const pointer = pointers.get(event.pointerId);
-    if (pointers.size === 0) canvas.classList.toggle('over-handle', app.handleAt(event.clientX, event.clientY, handleReach(event)) !== null);
+    if (pointers.size === 0) canvas.classList.toggle('over-handle', overHandle(app, event.clientX, event.clientY, handleReach(event)));
     if (!pointer || !gesture) return;
     const dx = event.clientX - pointer.x;
     const dy = event.clientY - pointer.y;
@@ -134,9 +141,34 @@ export function attachInput(app: App, canvas: HTMLCanvasElement): void {
     },
     { passive: false },
   );
+
+  return {
+    cancelDrag() {
+      if (gesture?.type !== 'handle' && gesture?.type !== 'object') return false;
+      app.cancelEdit();
+      gesture = null; // the rest of the press does nothing
+      return true;
+    },
+  };
 }
 
 const handleReach = (event: PointerEvent) => (event.pointerType === 'touch' ? HANDLE_REACH.touch : HANDLE_REACH.mouse);
+
+/**
+ * The drag a press at a client point starts: on a handle of the selected
+ * light, or on a directional light's marker (it selects the light, whose aim
+ * handle is there: a press on it turns it, never orbits); null elsewhere.
+ */
+function handleDragAt(app: App, x: number, y: number, reach: number): HandleDrag | null {
+  const handle = app.handleAt(x, y, reach);
+  if (handle) return app.beginHandleDrag(handle, x, y);
+  const sun = app.sunMarkerAt(x, y, reach);
+  if (sun === null) return null;
+  app.select({ kind: 'light', index: sun });
+  return app.beginHandleDrag('aim', x, y);
+}
+
+const overHandle = (app: App, x: number, y: number, reach: number) => app.handleAt(x, y, reach) !== null || app.sunMarkerAt(x, y, reach) !== null;
 
 /** Drags the selected object over the horizontal plane through its centre, or lifts it (shift). */
 function moveObject(app: App, from: { x: number; y: number }, to: { x: number; y: number }, lift: boolean, heightPx: number): void {
@@ -165,7 +197,7 @@ function moveObject(app: App, from: { x: number; y: number }, to: { x: number; y
 }
 
 /** Keyboard shortcuts, ignored while typing in a field. */
-export function attachKeys(app: App): void {
+export function attachKeys(app: App, input: ViewportInput): void {
   window.addEventListener('keydown', (event) => {
     const target = event.target as HTMLElement | null;
     if (target && (target.isContentEditable || /^(INPUT|TEXTAREA|SELECT)$/.test(target.tagName))) return;
@@ -182,7 +214,8 @@ export function attachKeys(app: App): void {
       event.preventDefault();
       app.deleteSelection();
     } else if (event.key === 'Escape') {
-      app.select(null);
+      // As in Blender and three.js's editor: Escape cancels a drag; with none, it deselects.
+      if (!input.cancelDrag()) app.select(null);
     }
   });
 }

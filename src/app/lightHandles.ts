@@ -13,6 +13,9 @@
  *   cursor (Blender's light gizmo tracks to what it is dragged over); over
  *   the sky a spot's target moves in the plane facing the camera and the
  *   others turn freely (wrapSphere).
+ * - A directional light has no position to click, so every one, selected or
+ *   not, shows a marker where its aim handle would be (sunMarkers): pressing
+ *   it selects the light.
  *
  * Dragging only changes the light's keys (position, target, rotation,
  * direction): uploaded data, never a new program.
@@ -175,12 +178,31 @@ export function handleNear(
   y: number,
   radius: number,
 ): HandleKind | null {
-  let best: HandleKind | null = null;
+  const points = (['move', 'aim'] as const).flatMap((kind) => (handles[kind] ? [{ ...handles[kind], key: kind }] : []));
+  return nearestWithin(points, x, y, radius);
+}
+
+/**
+ * Where each directional light's marker is: its "sun", the place its aim
+ * handle takes when it is selected. A directional light has no position to
+ * click, so the marker is what selects it; shown for every one, selected or not.
+ */
+export function sunMarkers(lights: readonly Light[], camera: Camera): { index: number; point: Vec3 }[] {
+  return lights.flatMap((light, index) => (light.type === 'directional' ? [{ index, point: handlePoints(light, camera).aim! }] : []));
+}
+
+/** The index of the marker within `radius` pixels of (x, y), the nearest if several are; null if none. */
+export function markerNear(markers: readonly { index: number; x: number; y: number }[], x: number, y: number, radius: number): number | null {
+  return nearestWithin(markers.map((m) => ({ ...m, key: m.index })), x, y, radius);
+}
+
+/** The key of the point nearest (x, y) within `radius`, or null; of equals the last (drawn last: on top). */
+function nearestWithin<K>(points: readonly { key: K; x: number; y: number }[], x: number, y: number, radius: number): K | null {
+  let best: K | null = null;
   let bestDistance = radius;
-  for (const kind of ['move', 'aim'] as const) {
-    const p = handles[kind];
-    const distance = p ? Math.hypot(p.x - x, p.y - y) : Infinity;
-    if (distance <= bestDistance) [best, bestDistance] = [kind, distance];
+  for (const p of points) {
+    const distance = Math.hypot(p.x - x, p.y - y);
+    if (distance <= bestDistance) [best, bestDistance] = [p.key, distance];
   }
   return best;
 }

@@ -66,8 +66,7 @@ async function start(): Promise<void> {
   app.onUploadError = (message) => showError(message);
   wireDenoiser(app);
   const loader = openStartState(app, autosave, startState);
-  attachInput(app, canvas);
-  attachKeys(app);
+  attachKeys(app, attachInput(app, canvas));
   wireToolbar(app, loader);
   wireFiles(app, autosave, loader, maps);
   wireContextLoss(app);
@@ -365,6 +364,7 @@ function wireOverlay(app: App): void {
   const moveHandle = element('circle', 'handle handle-move', 'move-handle');
   const aimHandle = element('circle', 'handle handle-aim', 'aim-handle');
   svg.append(dark, light, aimLineDark, aimLine, moveHandle, aimHandle);
+  const drawSuns = sunMarkerLayer(svg, dark);
   const place = (circle: Element, at: { x: number; y: number } | undefined, r: number) => {
     circle.setAttribute('display', at ? 'inline' : 'none');
     if (!at) return;
@@ -375,7 +375,9 @@ function wireOverlay(app: App): void {
   const draw = () => {
     const outline = app.selectionOutline();
     const handles = app.lightHandles();
-    svg.style.display = outline || handles ? '' : 'none';
+    const suns = app.sunMarkers();
+    svg.style.display = outline || handles || suns.length ? '' : 'none';
+    drawSuns(suns);
     for (const circle of [dark, light]) place(circle, outline ? { x: outline.x, y: outline.y } : undefined, Math.max(4, (outline?.r ?? 0) + 3));
     place(moveHandle, handles?.move, 6);
     place(aimHandle, handles?.aim, 5);
@@ -397,6 +399,44 @@ function wireOverlay(app: App): void {
     requestAnimationFrame(follow);
   };
   requestAnimationFrame(follow);
+}
+
+/** Eight short rays around a sun marker's disc (CSS pixels from its centre). */
+const SUN_RAYS = Array.from({ length: 8 }, (_, k) => {
+  const [c, s] = [Math.cos((k * Math.PI) / 4), Math.sin((k * Math.PI) / 4)];
+  return `M${(5.5 * c).toFixed(2)} ${(5.5 * s).toFixed(2)}L${(8.5 * c).toFixed(2)} ${(8.5 * s).toFixed(2)}`;
+}).join('');
+
+/**
+ * The directional lights' markers (a small sun each, under the outline and
+ * the handles, inserted before `below`): pressed through the canvas's input,
+ * like the handles. Returns the function that places them.
+ */
+function sunMarkerLayer(svg: SVGSVGElement, below: Element): (suns: { index: number; x: number; y: number }[]) => void {
+  const markers: SVGGElement[] = [];
+  const newMarker = () => {
+    const group = document.createElementNS(SVG_NS, 'g');
+    group.dataset.testid = 'sun-marker';
+    for (const [tag, className] of [['path', 'sun-rays-dark'], ['path', 'sun-rays'], ['circle', 'sun-disc']]) {
+      const part = document.createElementNS(SVG_NS, tag);
+      part.setAttribute('class', className);
+      if (tag === 'path') part.setAttribute('d', SUN_RAYS);
+      else part.setAttribute('r', '3.5');
+      group.append(part);
+    }
+    svg.insertBefore(group, below);
+    return group;
+  };
+  return (suns) => {
+    while (markers.length < suns.length) markers.push(newMarker());
+    while (markers.length > suns.length) markers.pop()!.remove();
+    suns.forEach((sun, i) => {
+      // Called every frame: write only what changed (a write makes the page repaint).
+      const transform = `translate(${sun.x.toFixed(1)} ${sun.y.toFixed(1)})`;
+      if (markers[i].getAttribute('transform') !== transform) markers[i].setAttribute('transform', transform);
+      if (markers[i].dataset.light !== String(sun.index)) markers[i].dataset.light = String(sun.index);
+    });
+  };
 }
 
 void start();

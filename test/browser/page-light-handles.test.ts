@@ -5,7 +5,10 @@
  * light's handle turns it; each drag is one undo step, restarts the
  * accumulation, never links a program, and reaches the autosave; a drag
  * away from the handles still orbits; a rectangle's aim handle turns it to
- * face the ground under the cursor. A scene of spheres with one spot, one
+ * face the ground under the cursor; Escape during a drag cancels it (the
+ * light turns back, no undo step), else deselects; a deselected directional
+ * light's sun marker selects it on a click and turns it on a drag, never
+ * orbiting. A scene of spheres with one spot, one
  * rectangle and one directional light, rendered at 160 pixels.
  */
 import type { Page } from 'playwright-core';
@@ -16,7 +19,7 @@ import type { Light } from '../../src/lights/registry';
 import { cameraRay } from '../../src/scene/camera';
 import { projectPoint } from '../../src/scene/picking';
 import { parseScene } from '../../src/scene/schema';
-import type { Vec3 } from '../../src/scene/types';
+import type { Camera, Vec3 } from '../../src/scene/types';
 import { canvasPoint, drag, instrument, openPage, probe, savedScene, usePageHarness, waitForRestart, waitForSpp, watchRestarts } from '../support/page';
 
 const harness = usePageHarness();
@@ -50,6 +53,14 @@ async function handle(page: Page, testId: 'move-handle' | 'aim-handle'): Promise
   return { x: box.x + Number(await circle.getAttribute('cx')), y: box.y + Number(await circle.getAttribute('cy')) };
 }
 
+/** Where the marker of light `index` is drawn, in client pixels. */
+async function sunMarker(page: Page, index: number): Promise<{ x: number; y: number }> {
+  const transform = await page.locator(`[data-testid="sun-marker"][data-light="${index}"]`).getAttribute('transform');
+  const [, x, y] = /translate\(([-\d.]+) ([-\d.]+)\)/.exec(transform ?? '')!;
+  const box = (await page.locator('#overlay').boundingBox())!;
+  return { x: box.x + Number(x), y: box.y + Number(y) };
+}
+
 /** Rounded to whole pixels: the mouse is moved there, and the expected result is computed for the same point. */
 const whole = (p: { x: number; y: number }) => ({ x: Math.round(p.x), y: Math.round(p.y) });
 
@@ -68,8 +79,12 @@ describe('page: light handles', () => {
     await waitForSpp(page, 2, 120_000);
     const linksLoaded = (await probe(page)).links;
     const box = (await page.getByTestId('viewport').boundingBox())!;
-    /** The image point of a client point (as the page's rayAt computes it). */
-    const ray = (p: { x: number; y: number }) => cameraRay(scene.camera, aspect, (p.x - box.x) / box.width, (p.y - box.y) / box.height);
+    /** The camera ray through a client point (as the page's rayAt computes it). */
+    const ray = (p: { x: number; y: number }, camera: Camera = scene.camera) => cameraRay(camera, aspect, (p.x - box.x) / box.width, (p.y - box.y) / box.height);
+    const seen = (camera: Camera, p: Vec3) => {
+      const at = projectPoint(camera, aspect, p)!;
+      return { x: box.x + at.u * box.width, y: box.y + at.v * box.height };
+    };
 
     // Click the spot to select it: its handles appear, the move handle where the light is drawn.
     const spotAt = projectPoint(scene.camera, aspect, SPOT.position as Vec3)!;
@@ -159,6 +174,25 @@ describe('page: light handles', () => {
     await page.keyboard.press('Control+z');
     expect((await lights(page))[3].direction, 'one undo turns it back').toEqual(added.direction);
 
+    // Escape during a drag cancels it: the light turns back at once, the rest of the press does nothing, no undo step
+    // is recorded (the redo step survives), and the light stays selected.
+    expect(await page.locator('#redo').isEnabled()).toBe(true);
+    const fromHandle = async () => {
+      const h = await handle(page, 'aim-handle');
+      return h ? Math.hypot(h.x - sunFrom.x, h.y - sunFrom.y) : Infinity;
+    };
+    await page.mouse.move(sunFrom.x, sunFrom.y);
+    await page.mouse.down();
+    await page.mouse.move(sunTo.x, sunTo.y, { steps: 8 });
+    await expect.poll(fromHandle, { message: 'the drag turns it' }).toBeGreaterThan(20);
+    await page.keyboard.press('Escape');
+    await expect.poll(fromHandle, { message: 'Escape turns it back' }).toBeLessThan(1);
+    await page.mouse.move(sunTo.x + 30, sunTo.y - 20, { steps: 4 });
+    await page.mouse.up();
+    expect((await lights(page))[3].direction, 'cancelled').toEqual(added.direction);
+    expect(await fromHandle(), 'still selected, unmoved').toBeLessThan(1);
+    expect(await page.locator('#redo').isEnabled(), 'no undo step recorded: the redo stack is kept').toBe(true);
+
     // The autosave holds the edits (its record: src/app/persistence.ts).
     await page.waitForFunction(() => document.body.dataset.saved === 'saved');
     const autosaved = await page.evaluate(
@@ -185,6 +219,33 @@ describe('page: light handles', () => {
     // Escape deselects: the handles go.
     await page.keyboard.press('Escape');
     await expect.poll(() => handle(page, 'aim-handle')).toBeNull();
+
+    // Deselected, each directional light still shows its sun marker, where its aim handle goes (for the orbited camera).
+    const orbited = parseScene(after).camera;
+    await expect.poll(() => page.getByTestId('sun-marker').count()).toBe(2);
+    const suns = [2, 3].map((i) => handlePoints(parseScene(after).lights[i], orbited).aim!);
+    for (const [k, index] of [2, 3].entries()) {
+      const drawnAt = await sunMarker(page, index);
+      const expected = seen(orbited, suns[k]);
+      expect(Math.hypot(drawnAt.x - expected.x, drawnAt.y - expected.y), `light ${index + 1}'s marker`).toBeLessThan(1);
+    }
+    // A click on one selects that light (its aim handle on the marker) and neither orbits nor turns it.
+    const sunClick = whole(await sunMarker(page, 2));
+    await page.mouse.click(sunClick.x, sunClick.y);
+    await expect.poll(() => page.locator('#panel').textContent()).toContain('Selected light 3');
+    const selectedAim = (await handle(page, 'aim-handle'))!;
+    expect(Math.hypot(selectedAim.x - sunClick.x, selectedAim.y - sunClick.y)).toBeLessThan(1);
+    // A drag from another's marker selects that one and turns it (as its aim handle would), the camera left alone.
+    const otherFrom = whole(await sunMarker(page, 3));
+    const otherTo = { x: otherFrom.x + 45, y: otherFrom.y - 25 };
+    await drag(page, otherFrom, otherTo.x - otherFrom.x, otherTo.y - otherFrom.y);
+    await expect.poll(() => page.locator('#panel').textContent()).toContain('Selected light 4');
+    const turned = await savedScene(page);
+    expect(turned.camera, 'no orbit').toEqual(after.camera);
+    expect((turned.lights as Lights)[2], 'the clicked one is unturned').toEqual((after.lights as Lights)[2]);
+    const before3 = parseScene(after).lights[3];
+    const expectedTurn = draggedLight({ kind: 'aim', index: 3, light: before3, camera: orbited, start: ray(otherFrom, orbited) }, ray(otherTo, orbited), null) as { direction: Vec3 };
+    (turned.lights as Lights)[3].direction!.forEach((x, i) => expect(x).toBeCloseTo(expectedTurn.direction[i], 3));
 
     await waitForSpp(page, 2);
     expect((await probe(page)).links - linksLoaded, 'handle drags, undo and redo link no program').toBe(0);

@@ -16,6 +16,8 @@ import {
   eulerAngles,
   handleNear,
   handlePoints,
+  markerNear,
+  sunMarkers,
   viewPlanePoint,
   wrapSphere,
   type HandleDrag,
@@ -72,6 +74,23 @@ describe('handle places', () => {
     expect(handleNear(handles, 105, 101, 9)).toBe('aim');
     expect(handleNear(handles, 120, 100, 9)).toBeNull();
     expect(handleNear({ aim: undefined, move: { x: 0, y: 0 } }, 3, 4, 5)).toBe('move');
+  });
+
+  it("marks every directional light, and only those, where its aim handle goes, selected or not", () => {
+    const sun = (direction: Vec3): Light => ({ type: 'directional', direction, color: [1, 1, 1], irradiance: 1 });
+    const lights = [createLight('spot', [0, 0, 0]), sun([0, -1, 0]), createLight('point', [1, 1, 1]), sun([1, -1, 0.5])];
+    const markers = sunMarkers(lights, camera);
+    expect(markers.map((m) => m.index)).toEqual([1, 3]);
+    for (const m of markers) expect(m.point).toEqual(handlePoints(lights[m.index], camera).aim);
+    expect(sunMarkers([createLight('rectangle', [0, 0, 0])], camera)).toEqual([]);
+  });
+
+  it('finds the marker nearest the cursor within reach, the one drawn on top of two in the same place, none beyond', () => {
+    const markers = [{ index: 2, x: 50, y: 50 }, { index: 5, x: 58, y: 50 }, { index: 7, x: 58, y: 50 }];
+    expect(markerNear(markers, 52, 51, 9)).toBe(2);
+    expect(markerNear(markers, 56, 50, 9), 'of two in the same place, the later (drawn on top)').toBe(7);
+    expect(markerNear(markers, 40, 40, 9)).toBeNull();
+    expect(markerNear([], 0, 0, 9)).toBeNull();
   });
 });
 
