@@ -24,7 +24,7 @@ import { cameraFrame, type Ray } from '../scene/camera';
 import type { Camera, Vec3 } from '../scene/types';
 import { meshToWorldMatrix } from '../scene/mesh/transform';
 import { MIN_SPOT_AXIS } from '../lights/spot/kind';
-import type { Light } from '../lights/registry';
+import { lightKindOf, type Light } from '../lights/registry';
 
 export type HandleKind = 'move' | 'aim';
 
@@ -52,24 +52,29 @@ export function emitDirection(rotation: Vec3): Vec3 {
   return matrixTimes(rotationMatrix(rotation), [0, -1, 0]);
 }
 
+/** What the light's aim handle drags (its kind's `aim`: src/lights/kind.ts), or undefined. */
+const aimOf = (light: Light) => lightKindOf(light).aim;
+/** The light's position, or null for a kind without one (a directional light). */
+const positionOf = (light: Light): Vec3 | null => ('position' in light ? light.position : null);
+
 /** A light's handles in the world (null where it has none: a directional light has no move handle, a sphere or point light no aim). */
 export function handlePoints(light: Light, camera: Camera): HandlePoints {
-  switch (light.type) {
-    case 'spot':
-      return { move: light.position, aim: light.target, origin: light.position };
-    case 'rectangle':
-    case 'disk': {
-      const length = AIM_SHARE * viewHeightAt(camera, light.position);
-      return { move: light.position, aim: add(light.position, scale(emitDirection(light.rotation), length)), origin: light.position };
+  const position = positionOf(light);
+  switch (aimOf(light)) {
+    case 'target':
+      return { move: position, aim: (light as { target: Vec3 }).target, origin: position! };
+    case 'rotation': {
+      const length = AIM_SHARE * viewHeightAt(camera, position!);
+      return { move: position, aim: add(position!, scale(emitDirection((light as { rotation: Vec3 }).rotation), length)), origin: position! };
     }
-    case 'directional': {
+    case 'direction': {
       // No position of its own: the handle circles the point the camera orbits, on the side the light comes from.
       const anchor = camera.target;
       const length = AIM_SHARE * viewHeightAt(camera, anchor);
-      return { move: null, aim: sub(anchor, scale(normalize(light.direction), length)), origin: anchor };
+      return { move: position, aim: sub(anchor, scale(normalize((light as { direction: Vec3 }).direction), length)), origin: anchor };
     }
     default:
-      return { move: light.position, aim: null, origin: light.position };
+      return { move: position, aim: null, origin: position! };
   }
 }
 
@@ -147,17 +152,19 @@ export function draggedLight(drag: HandleDrag, ray: Ray, surface: Vec3 | null): 
     const to = viewPlanePoint(camera, ray, light.position);
     return from && to ? { position: add(light.position, sub(to, from)) } : null;
   }
-  if (light.type === 'spot') {
-    const target = surface ?? viewPlanePoint(camera, ray, light.target);
-    return target && norm(sub(target, light.position)) > 1e3 * MIN_SPOT_AXIS ? { target } : null;
+  const aim = aimOf(light);
+  const position = positionOf(light);
+  if (aim === 'target' && position) {
+    const target = surface ?? viewPlanePoint(camera, ray, handles.aim!);
+    return target && norm(sub(target, position)) > 1e3 * MIN_SPOT_AXIS ? { target } : null;
   }
-  if (light.type === 'rectangle' || light.type === 'disk') {
-    const radius = norm(sub(handles.aim!, light.position));
-    const point = surface ?? wrapSphere(ray, light.position, radius, facesCamera(camera, handles));
-    const direction = sub(point, light.position);
-    return norm(direction) > 1e-9 ? { rotation: aimRotation(light.rotation, direction) } : null;
+  if (aim === 'rotation' && position) {
+    const radius = norm(sub(handles.aim!, position));
+    const point = surface ?? wrapSphere(ray, position, radius, facesCamera(camera, handles));
+    const direction = sub(point, position);
+    return norm(direction) > 1e-9 ? { rotation: aimRotation((light as { rotation: Vec3 }).rotation, direction) } : null;
   }
-  if (light.type === 'directional') {
+  if (aim === 'direction') {
     const radius = norm(sub(handles.aim!, handles.origin));
     const sun = wrapSphere(ray, handles.origin, radius, facesCamera(camera, handles));
     return { direction: normalize(sub(handles.origin, sun)) };
@@ -188,7 +195,7 @@ export function handleNear(
  * click, so the marker is what selects it; shown for every one, selected or not.
  */
 export function sunMarkers(lights: readonly Light[], camera: Camera): { index: number; point: Vec3 }[] {
-  return lights.flatMap((light, index) => (light.type === 'directional' ? [{ index, point: handlePoints(light, camera).aim! }] : []));
+  return lights.flatMap((light, index) => (positionOf(light) === null && aimOf(light) ? [{ index, point: handlePoints(light, camera).aim! }] : []));
 }
 
 /** The index of the marker within `radius` pixels of (x, y), the nearest if several are; null if none. */

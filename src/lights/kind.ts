@@ -94,4 +94,11 @@ export interface LightKind<L extends LightBase = LightBase> {
   readonly mitsuba: (l: L) => XmlNode;
   /** The page's controls for its keys. */
   readonly controls: readonly LightControl[];
+  /**
+   * What the page's aim handle drags (src/app/lightHandles.ts): its
+   * `target` point, its `rotation` (the emitting axis, local -y, turned the
+   * least way), or its `direction`; none when absent. A kind with a
+   * `position` key also has a move handle.
+   */
+  readonly aim?: 'target' | 'rotation' | 'direction';
 }

@@ -39,6 +39,7 @@ export const directional: LightKind<DirectionalLight> = {
   power: (l, bounds) => Math.PI * bounds.radius * bounds.radius * luminance(scale(l.color, l.irradiance)),
   extent: () => null,
   mitsuba: (l) => el('emitter', { type: 'directional' }, [el('vector', { name: 'direction', value: triple(normalize(l.direction)) }), rgb('irradiance', scale(l.color, l.irradiance))]),
+  aim: 'direction',
   controls: [
     { control: 'color', key: 'color', label: 'color' },
     { control: 'number', key: 'irradiance', label: 'irradiance', min: 0, max: 50, step: 0.05 },

@@ -38,6 +38,7 @@ export const disk: LightKind<DiskLight> = {
   power: (l) => Math.PI * Math.PI * l.radius * l.radius * luminance(radianceOf(l)),
   extent: (l) => ({ center: l.position, radius: l.radius }),
   mitsuba: (l) => planarMitsuba('disk', l.position, l.rotation, l.radius, l.radius, radianceOf(l)),
+  aim: 'rotation',
   controls: [
     { control: 'color', key: 'color', label: 'color' },
     { control: 'number', key: 'intensity', label: 'intensity', min: 0, max: 500, step: 0.5 },

@@ -53,6 +53,7 @@ export const rectangle: LightKind<RectangleLight> = {
   power: (l) => Math.PI * l.size[0] * l.size[1] * luminance(radianceOf(l)),
   extent: (l) => ({ center: l.position, radius: Math.hypot(l.size[0], l.size[1]) / 2 }),
   mitsuba: (l) => planarMitsuba('rectangle', l.position, l.rotation, l.size[0] / 2, l.size[1] / 2, radianceOf(l)),
+  aim: 'rotation',
   controls: [
     { control: 'color', key: 'color', label: 'color' },
     { control: 'number', key: 'intensity', label: 'intensity', min: 0, max: 500, step: 0.5 },

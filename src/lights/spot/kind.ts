@@ -91,6 +91,7 @@ export const spot: LightKind<SpotLight> = {
       float('beam_width', l.beamWidth),
     ]);
   },
+  aim: 'target',
   controls: [
     { control: 'color', key: 'color', label: 'color' },
     { control: 'number', key: 'intensity', label: 'intensity', min: 0, max: 500, step: 0.5 },
