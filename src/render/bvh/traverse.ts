@@ -1,12 +1,11 @@
 /**
  * A TypeScript mirror of src/shaders/scene/bvh.glsl over the packed texture
- * data: the same layout, the same steps (one wide node, or two triangles of a leaf, each),
+ * data: the same layout, the same steps (one node or one triangle each),
  * nearest-child-first order, fixed-size stack, conservative slab test and
  * watertight ray-triangle test (Woop, Benthin and Wald, JCGT 2013). Tests
  * compare it with brute force and with the GLSL.
  */
-import { BVH_NODE_TEXELS, BVH_ROOT_NODE, BVH_ROW_TRIANGLES, BVH_TEXTURE_WIDTH, triangleAt, triangleTexel, type PackedBvh } from './pack';
-import { MAX_WIDE_STACK } from './wide';
+import { BVH_NODE_TEXELS, BVH_ROOT_NODE, triangleAt, triangleTexel, type PackedBvh } from './pack';
 
 export type Vec3 = readonly [number, number, number];
 
@@ -84,7 +83,7 @@ export function safeInverse(dir: Vec3): Vec3 {
   return dir.map((d) => (Object.is(d, -0) || d < 0 ? -1 : 1) / Math.max(Math.abs(d), 1e-30)) as unknown as Vec3;
 }
 
-/** Work of one traversal (bench/bvh-stats.ts): per loop step 0 for a node, else the triangles it tested (1 or 2); and stack pops. */
+/** Work of one traversal (bench/bvh-stats.ts): per loop step 0 for a node, 1 for a triangle; and stack pops. */
 export interface TraceStats {
   steps: number[];
   pops: number;
@@ -97,81 +96,64 @@ export function traceStats(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: num
   return stats;
 }
 
-/** Column of a row's last triangle (bvh.glsl: its pair is zero padding). */
-const LAST_COLUMN = (BVH_ROW_TRIANGLES - 1) * 3;
-
 /**
  * Closest hit (anyHit false) or the first hit found (anyHit true) before
- * tMax; null when none. The current item is a node or a leaf's pending
- * triangles. A triangle step tests the next two (one at a row's end); a
- * node step tests the 4 children's boxes, sorts the hit ones by entry
- * distance (the GLSL's sorting network, so ties go the same way), makes the
- * nearest the current item and pushes the others, the second nearest on
- * top. With no current item, one is popped. `root`: the group's root node
+ * tMax; null when none. Each step tests one triangle, while a leaf's range
+ * lasts, or else visits one node: both children's boxes, a hit leaf's
+ * triangles becoming the range (both leaves: their joint range), a hit
+ * child node the next node (both: the nearer, the other pushed); with
+ * nothing left, the next node is popped. `root`: the group's root node
  * (packed.roots; the first group's by default).
  */
 export function traverseBvh(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: number, anyHit = false, stats?: TraceStats, root = BVH_ROOT_NODE): BvhHit | null {
   const tex = packed.texture.data;
   const invDir = safeInverse(dir);
   const ray = shearRay(origin, dir);
-  const stack: Item[] = [];
+  const stack: number[] = [];
   let best: BvhHit | null = null;
   let limit = tMax;
-  let item: Item | null = { node: root };
-  while (item) {
-    if ('texel' in item) {
-      const j = triangleAt(item.texel);
-      const tested: number = (item.texel % BVH_TEXTURE_WIDTH) === LAST_COLUMN ? 1 : Math.min(2, item.count);
-      stats?.steps.push(tested);
-      for (let k = 0; k < tested; k++) {
-        const hit = intersectTriangle(tex, j + k, ray, limit);
-        if (hit) {
-          best = hit;
-          limit = hit.t;
-          if (anyHit) return best;
-        }
+  let node = root;
+  let triangle = 0;
+  let end = 0; // triangles [triangle, end) pending
+  while (node >= 0 || triangle < end) {
+    if (triangle < end) {
+      stats?.steps.push(1);
+      const hit = intersectTriangle(tex, triangle, ray, limit);
+      triangle++;
+      if (hit) {
+        best = hit;
+        limit = hit.t;
+        if (anyHit) return best;
       }
-      const count: number = item.count - ((item.texel % BVH_TEXTURE_WIDTH) === LAST_COLUMN ? 1 : 2);
-      item = count > 0 ? { texel: triangleTexel(j + tested), count } : null;
     } else {
       stats?.steps.push(0);
-      const hits = nodeHits(tex, item.node, origin, invDir, limit);
-      item = hits.length ? hits[0].item : null;
-      for (let k = hits.length - 1; k >= 1; k--) stack.push(hits[k].item);
-      if (stack.length > MAX_WIDE_STACK) throw new Error('BVH stack overflow');
+      const o = node * BVH_NODE_TEXELS * 4;
+      const t0 = boxEntry(tex, o, o + 4, origin, invDir, limit);
+      const t1 = boxEntry(tex, o + 8, o + 12, origin, invDir, limit);
+      const [ref0, ref1, end0, end1] = [tex[o + 3], tex[o + 7], tex[o + 11], tex[o + 15]];
+      const leaf0 = t0 < Infinity && end0 > 0;
+      const leaf1 = t1 < Infinity && end1 > 0;
+      const inner0 = t0 < Infinity && end0 === 0;
+      const inner1 = t1 < Infinity && end1 === 0;
+      if (leaf0 || leaf1) {
+        // Texels of the first triangle and of the one after the last; both leaves: the joint range.
+        triangle = triangleAt(leaf0 ? (leaf1 ? Math.min(ref0, ref1) : ref0) : ref1);
+        end = triangleAt(leaf0 ? (leaf1 ? Math.max(end0, end1) : end0) : end1);
+      }
+      node = -1;
+      if (inner0 && inner1) {
+        if (stack.length >= packed.depth) throw new Error('BVH stack overflow');
+        stack.push(t0 <= t1 ? ref1 : ref0);
+        node = t0 <= t1 ? ref0 : ref1;
+      } else if (inner0) node = ref0;
+      else if (inner1) node = ref1;
     }
-    if (!item && stack.length > 0) {
-      item = stack.pop()!;
+    if (node < 0 && stack.length > 0) {
+      node = stack.pop()!;
       if (stats) stats.pops++;
     }
   }
   return best;
-}
-
-/** A traversal item: a node, or a leaf's triangles from `texel` (`count` of them). */
-type Item = { node: number } | { texel: number; count: number };
-
-/** Node q's children whose boxes the ray enters before tMax, nearest first (bvh.glsl's sorting network). */
-function nodeHits(tex: Float32Array, q: number, origin: Vec3, invDir: Vec3, tMax: number): { t: number; item: Item }[] {
-  const o = q * BVH_NODE_TEXELS * 4;
-  const entries = [0, 1, 2, 3].map((c) => {
-    const count = tex[o + 28 + c];
-    let enter = 0;
-    let exit = tMax;
-    for (let k = 0; k < 3; k++) {
-      const t0 = (tex[o + 8 * k + c] - origin[k]) * invDir[k];
-      const t1 = (tex[o + 8 * k + 4 + c] - origin[k]) * invDir[k];
-      enter = Math.max(enter, Math.min(t0, t1));
-      exit = Math.min(exit, Math.max(t0, t1));
-    }
-    const hit = count >= 0 && enter <= exit * BOX_EXIT_SCALE;
-    const ref = tex[o + 24 + c];
-    return { t: hit ? enter : Infinity, item: (count > 0 ? { texel: ref, count } : { node: ref }) as Item };
-  });
-  for (const [a, b] of [[0, 1], [2, 3], [0, 2], [1, 3], [1, 2]]) {
-    if (entries[b].t < entries[a].t) [entries[a], entries[b]] = [entries[b], entries[a]];
-  }
-  return entries.filter((e) => e.t < Infinity);
 }
 
 /** Every triangle tested (or only triangle `only`): the reference for traverseBvh. */
