@@ -2,7 +2,9 @@
  * The GLSL BVH traversal (src/shaders/scene/bvh.glsl) in the browser,
  * against the TypeScript reference over the same packed textures: the
  * closest hit of random rays over the bunny equals brute force over every
- * triangle, any-hit agrees, the surface's interpolated normal and material
+ * triangle, any-hit agrees; closest and any hit equal the TypeScript
+ * traversal's on random soups and a sphere, from inside boxes and through
+ * shared vertices; the surface's interpolated normal and material
  * are right, and so are the texture coordinates interpolated from the
  * corners' (also in a shared group, in object space); and the watertight
  * test lets no ray aimed exactly at a shared edge or vertex of an icosphere
@@ -105,8 +107,8 @@ describe('GLSL BVH traversal', () => {
   });
 
   it('closest hit (triangle and t) and any hit as the TypeScript traversal: random soups whose leaves cross row ends, rays from inside boxes and through shared vertices', async () => {
-    // Soups of up to 3000 triangles (leaves cross the 681-triangle rows, where a step tests one
-    // triangle) and an icosphere (shared edges and vertices: rays aimed exactly at its vertices).
+    // Soups of up to 3000 triangles (some leaves cross the ends of the 681-triangle rows, where the
+    // next triangle is on the next row) and an icosphere (shared edges and vertices: rays aimed exactly at its vertices).
     const sphere = transformMesh(icosphere(3, false), { position: [0.2, -0.1, 0.3], rotation: [11, 23, 37] });
     const scenes: BvhMeshInput[][] = [
       [triangleSoup(3000, 21, 2, 0, true)],
