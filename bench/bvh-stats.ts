@@ -7,7 +7,9 @@
  * jitter), then from each camera hit on a mesh or the ground a cosine
  * direction (closest hit) and a shadow ray to a uniform upper-hemisphere
  * direction (any hit).
- *   npx tsx bench/bvh-stats.ts [--scene bunny] [--size 128x96]
+ * A step is a node visit or a leaf step (one triangle in the binary BVH, up
+ * to two in the wide one): "triangles" counts the triangles tested.
+ *   npx tsx bench/bvh-stats.ts [--scene bunny|FILE.json] [--size 128x96]
  */
 import { traceStats, type TraceStats } from '../src/render/bvh/traverse';
 import { sceneRays } from './bvhRays';
@@ -50,7 +52,7 @@ for (const kind of Object.keys(stats) as Kind[]) {
   const touching = all.filter((s) => s.hit || s.steps.length > 1).length;
   console.log(
     `${kind}: ${all.length} rays (${((100 * touching) / all.length).toFixed(0)}% go past the root); per ray: ${raySteps.toFixed(2)} steps, ` +
-      `${field((s) => s.steps.filter((c) => c === 0).length)} nodes, ${field((s) => s.steps.filter((c) => c === 1).length)} triangles, ${field((s) => s.pops)} pops; ` +
+      `${field((s) => s.steps.filter((c) => c === 0).length)} nodes, ${field((s) => s.steps.filter((c) => c > 0).length)} triangle steps, ${field((s) => s.steps.reduce((a, c) => a + c, 0))} triangles, ${field((s) => s.pops)} pops; ` +
       `per quad in lock step: ${quadSteps.toFixed(2)} steps (${(quadSteps / Math.max(1e-9, raySteps)).toFixed(2)}x the mean ray's)`,
   );
 }

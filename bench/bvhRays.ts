@@ -41,7 +41,7 @@ const normalize = (a: Vec3): Vec3 => {
 };
 
 export async function sceneBvh(sceneName: string): Promise<{ packed: PackedBvh; scene: ReturnType<typeof parseSceneText> }> {
-  const sceneFile = fileURLToPath(new URL(`test/fixtures/scenes/${sceneName}.json`, projectRoot()));
+  const sceneFile = sceneName.endsWith('.json') ? sceneName : fileURLToPath(new URL(`test/fixtures/scenes/${sceneName}.json`, projectRoot()));
   const scene = parseSceneText(readFileSync(sceneFile, 'utf8'));
   const { assets } = await readSceneFiles(scene, sceneFile);
   // One world-space BVH of every mesh (no instancing): the traversal benchmarks' rays are world rays.
