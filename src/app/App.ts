@@ -141,17 +141,22 @@ export class App {
 
   /** Finishes the current edit; records it for undo when it changed anything. */
   endEdit(): void {
-    const before = this.editBefore;
-    this.editBefore = null;
-    if (before && JSON.stringify(before) !== JSON.stringify(this.scene)) this.history.record(before);
+    const before = this.closeEdit();
+    if (before) this.history.record(before);
     this.changed();
   }
 
   /** Abandons the current edit (Escape during a drag): the scene goes back to how it was before it, and no undo step is recorded. */
   cancelEdit(): void {
+    const before = this.closeEdit();
+    if (before) this.replaceScene(before);
+  }
+
+  /** Closes the current edit: the scene before it when the edit changed anything, else null. */
+  private closeEdit(): Scene | null {
     const before = this.editBefore;
     this.editBefore = null;
-    if (before && JSON.stringify(before) !== JSON.stringify(this.scene)) this.replaceScene(before);
+    return before && JSON.stringify(before) !== JSON.stringify(this.scene) ? before : null;
   }
 
   /** A continuous edit step (drag, slider): applies it now, recorded at endEdit. */
