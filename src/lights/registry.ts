@@ -166,6 +166,17 @@ export function packPlanarLight(l: Light, material: number, emitterPdf: number):
   return packRecord(PLANAR_LIGHT, { center: shape.center, u: shape.u, v: shape.v, kind: EMITTER_KINDS[l.type], material, emitterPdf });
 }
 
+/**
+ * A sphere around an area light's shape (its centre and the half-diagonal
+ * of its half-axes, which holds every corner of the rectangle they span and
+ * so any shape inside it): the queries test it before the shape.
+ */
+export function planarBound(l: Light): [number, number, number, number] {
+  const { center, u, v } = lightArea(l)!;
+  const r = Math.hypot(...u, ...v);
+  return [center[0], center[1], center[2], r * (1 + 1e-5) + 1e-7];
+}
+
 // ---------------------------------------------------------------- program variants
 
 /** The kinds (besides the default, always compiled) whose code a scene with these lights needs. */

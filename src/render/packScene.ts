@@ -12,7 +12,7 @@ import { materialFeatures, materialOpacityFactor, materialSeeThrough, materialTe
 import { CHANNELS, type TextureInput } from '../scene/texture/texture';
 import { ATLAS_FORMATS, type AtlasFormat, type Placement } from './textures/atlas';
 import {
-  type Light, lightArea, lightKindOf, lightEmitted, lightExtent, lightFeatures, lightPower, lightSphere, packEmitter, packLightEmitter, packPlanarLight,
+  type Light, lightArea, lightKindOf, lightEmitted, lightExtent, lightFeatures, lightPower, lightSphere, packEmitter, packLightEmitter, packPlanarLight, planarBound,
 } from '../lights/registry';
 import type { Material, Vec3 } from '../scene/types';
 import { asRenderScene, type RenderScene as Scene } from '../scene/fileMaterials';
@@ -176,6 +176,7 @@ export function packScene(sceneIn: Scene | SceneModel, options: PackOptions = {}
   planarLights.forEach((light, i) => {
     const material = addMaterial(packEmitterOnly(lightEmitted(light)));
     data.set(packPlanarLight(light, material, lightPdfs.get(light) ?? 0), (SECTIONS.planarLights + i * PLANAR_LIGHT.texels) * 4);
+    data.set(planarBound(light), (SECTIONS.planarBounds + i) * 4);
   });
   powers.forEach((_, i) => {
     const choice = packRecord(EMITTER_CHOICE, { aliasThreshold: alias.threshold[i], alias: alias.alias[i] });

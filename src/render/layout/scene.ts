@@ -130,6 +130,8 @@ const TABLES = [
   // First and within row 0: the intersection loops fetch it with a constant
   // row (a dynamic row cost the seed scene 7% of its path rate in SwiftShader).
   ['sphereGeometry', MAX_SCENE_SPHERES],
+  // The planar lights' bounding spheres, which the same loops test first.
+  ['planarBounds', MAX_LIGHTS],
   ['materials', MAX_MATERIALS * MATERIAL.texels],
   ['spheres', MAX_SCENE_SPHERES * SPHERE.texels],
   ['emitters', MAX_EMITTERS * EMITTER.texels],
@@ -155,7 +157,7 @@ const SCENE_ROW_BITS = Math.log2(SCENE_ROW_TEXELS);
 if (!Number.isInteger(SCENE_ROW_BITS)) throw new Error('SCENE_ROW_TEXELS must be a power of two');
 /** Texels the tables fill, from texel 0. */
 export const TABLE_TEXELS = TABLES.reduce((sum, [, texels]) => sum + texels, 0);
-if (MAX_SCENE_SPHERES > SCENE_ROW_TEXELS) throw new Error('the sphere-geometry table must fit in row 0');
+if (SECTIONS.planarBounds + MAX_LIGHTS > SCENE_ROW_TEXELS) throw new Error('the sphere-geometry and planar-bounds tables must fit in row 0');
 /** Height of the data texture: the rows the tables need. */
 export const DATA_ROWS = Math.ceil(TABLE_TEXELS / SCENE_ROW_TEXELS);
 /** Texels of the data texture, DATA_ROWS whole rows (past TABLE_TEXELS: padding, 0). */
@@ -179,6 +181,7 @@ export function sceneLayoutDefines(): Record<string, number> {
     EMITTER_CHOICES_FIRST: SECTIONS.emitterChoices,
     MESHES_FIRST: SECTIONS.meshes,
     PLANAR_LIGHTS_FIRST: SECTIONS.planarLights,
+    PLANAR_BOUNDS_FIRST: SECTIONS.planarBounds,
     TEXTURES_FIRST: SECTIONS.textures,
     SCENE_ROW_TEXELS,
     SCENE_ROW_BITS,

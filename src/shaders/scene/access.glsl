@@ -17,4 +17,6 @@ Material loadMaterial(int i) { return readMaterial(MATERIALS_FIRST + i * MATERIA
 Emitter loadEmitter(int i) { return readEmitter(EMITTERS_FIRST + i * EMITTER_TEXELS); }
 EmitterChoice loadEmitterChoice(int i) { return readEmitterChoice(EMITTER_CHOICES_FIRST + i * EMITTER_CHOICE_TEXELS); }
 MeshRecord loadMesh(int i) { return readMeshRecord(MESHES_FIRST + i * MESH_RECORD_TEXELS); }
+// center.xyz, radius of a sphere around planar light i; in row 0 like sphereGeometry.
+vec4 planarLightBound(int i) { return texelFetch(uSceneData, ivec2(PLANAR_BOUNDS_FIRST + i, 0), 0); }
 PlanarLight loadPlanarLight(int i) { return readPlanarLight(PLANAR_LIGHTS_FIRST + i * PLANAR_LIGHT_TEXELS); }

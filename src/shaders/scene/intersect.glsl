@@ -68,6 +68,19 @@ float groundHitT(vec3 origin, vec3 direction) {
   return groundEnabled() ? t : INFINITY;
 }
 
+// How far outside the sphere the segment from origin to
+// origin + tMax * direction (unit) stays: squared distance of its closest
+// point to the centre minus the squared radius; negative when it passes
+// through. No root is solved (no sqrt, no division): the segment starts
+// spawnRayOrigin's offset outside its own surface, which this resolves
+// (the offset is about 30 ulps of |oc|^2).
+float segmentClearance(vec3 origin, vec3 direction, float tMax, vec4 sphere) {
+  vec3 oc = origin - sphere.xyz;
+  float tClosest = clamp(-dot(oc, direction), 0.0, tMax);
+  vec3 closest = oc + tClosest * direction;
+  return dot(closest, closest) - sphere.w * sphere.w;
+}
+
 #if HAS_PLANAR_LIGHTS
 // Nearest t > 0 where the ray meets the planar light's shape, or INFINITY
 // (also for rays parallel to its plane: t is then NaN or infinite, and so
@@ -140,9 +153,12 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   float tPlanar = INFINITY;
   int planar = 0;
   for (int i = 0; i < planarLightCount(); i++) {
-    float t = planarHitT(origin, direction, loadPlanarLight(i));
-    planar = t < tPlanar ? i : planar;
-    tPlanar = min(t, tPlanar);
+    bool near = segmentClearance(origin, direction, min(hit.t, tPlanar), planarLightBound(i)) < 0.0;
+    for (int k = 0; k < (near ? 1 : 0); k++) {
+      float t = planarHitT(origin, direction, loadPlanarLight(i));
+      planar = t < tPlanar ? i : planar;
+      tPlanar = min(t, tPlanar);
+    }
   }
   if (tPlanar < hit.t) planarLightHit(hit, origin, direction, planar, tPlanar);
 #endif
@@ -176,18 +192,6 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   return hit;
 }
 
-// How far outside the sphere the segment from origin to
-// origin + tMax * direction (unit) stays: squared distance of its closest
-// point to the centre minus the squared radius; negative when it passes
-// through. No root is solved (no sqrt, no division): the segment starts
-// spawnRayOrigin's offset outside its own surface, which this resolves
-// (the offset is about 30 ulps of |oc|^2).
-float segmentClearance(vec3 origin, vec3 direction, float tMax, vec4 sphere) {
-  vec3 oc = origin - sphere.xyz;
-  float tClosest = clamp(-dot(oc, direction), 0.0, tMax);
-  vec3 closest = oc + tClosest * direction;
-  return dot(closest, closest) - sphere.w * sphere.w;
-}
 
 // True when something blocks the segment from origin to origin + tMax *
 // direction. Every surface blocks, glass included (as in Mitsuba's path
@@ -201,7 +205,10 @@ bool occluded(vec3 origin, vec3 direction, float tMax, int skipSphere) {
   }
   bool blocked = clearance < 0.0 || groundHitT(origin, direction) < tMax;
 #if HAS_PLANAR_LIGHTS
-  for (int i = 0; i < planarLightCount(); i++) blocked = blocked || planarHitT(origin, direction, loadPlanarLight(i)) < tMax;
+  for (int i = 0; i < planarLightCount(); i++) {
+    bool near = segmentClearance(origin, direction, tMax, planarLightBound(i)) < 0.0;
+    for (int k = 0; k < (near ? 1 : 0); k++) blocked = blocked || planarHitT(origin, direction, loadPlanarLight(i)) < tMax;
+  }
 #endif
 #if HAS_MESHES
   blocked = blocked || meshAnyHit(origin, direction, tMax);
