@@ -9,6 +9,7 @@ import { formatTable, runBench, type BenchOptions } from './run';
 import { writeResult } from './common';
 import { formatFirstPixel, runFirstPixel } from './first-pixel';
 import { formatEnvmapLoad, measureEnvmapLoad } from './envmap-load';
+import { formatManyLights, runManyLights } from './many-lights';
 
 function parse(argv: string[]): { options: BenchOptions; save: boolean; json: boolean } {
   const options: BenchOptions = { log: (line) => console.error(line) };
@@ -54,11 +55,15 @@ async function main(): Promise<void> {
   // Loading a 2k environment map: decode and sampling distribution (Node; the page runs the same code in a Worker).
   const loadRuns = times(options) <= 0.5 ? 1 : 5;
   const envmapLoad = measureEnvmapLoad(loadRuns);
-  const result = { ...bench, firstPixel, envmapLoad };
+  // Issue 21's row: 64 mixed lights against one (path rate, interleaved rounds).
+  const quick = times(options) <= 0.5;
+  const manyLights = await runManyLights({ rounds: quick ? 1 : 3, seconds: quick ? 0.5 : 4 }, options.log);
+  const result = { ...bench, firstPixel, envmapLoad, manyLights };
   console.log(`${result.renderer} | ${result.machine.browser} | ${result.machine.cpu} x${result.machine.cores} | rev ${result.revision}${result.mitsubaVersion ? ` | Mitsuba ${result.mitsubaVersion} scalar_rgb` : ''}`);
   console.log(formatTable(result));
   console.log(formatFirstPixel(firstPixel));
   console.log(formatEnvmapLoad(envmapLoad, loadRuns));
+  console.log(formatManyLights(manyLights));
   if (json) console.log(JSON.stringify(result));
   if (save) console.log(`saved ${writeResult('bench', result)}`);
 }

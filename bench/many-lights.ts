@@ -126,7 +126,8 @@ export function formatManyLights(r: ManyLightsResult): string {
   ].join('\n');
 }
 
-if (process.argv[1] && fileURLToPath(import.meta.url) === process.argv[1]) {
+// Run directly (not when bundled into dist/cli/bench.js, whose import.meta.url is the bundle's).
+if (/many-lights\.[cm]?[jt]s$/.test(process.argv[1] ?? '')) {
   const arg = (name: string, fallback: string) => {
     const i = process.argv.indexOf(`--${name}`);
     return i >= 0 ? process.argv[i + 1] : fallback;

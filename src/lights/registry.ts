@@ -174,7 +174,8 @@ export function packPlanarLight(l: Light, material: number, emitterPdf: number):
 export function planarBound(l: Light): [number, number, number, number] {
   const { center, u, v } = lightArea(l)!;
   const r = Math.hypot(...u, ...v);
-  return [center[0], center[1], center[2], r * (1 + 1e-5) + 1e-7];
+  // Padded (0.1%) so that rounding in the shader's segment test never culls a ray through the rim.
+  return [center[0], center[1], center[2], r * (1 + 1e-3) + 1e-7];
 }
 
 // ---------------------------------------------------------------- program variants

@@ -21,8 +21,9 @@ import { buildAliasTable } from './aliasTable';
 import type { MeshGroups } from './bvh/groups';
 import { selectCausticGuides, type GuideSphere } from './causticGuides';
 import {
-  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MAX_TEXTURES, MESH, PLANAR_LIGHT, SECTIONS, SPHERE, TEXTURE,
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MAX_TEXTURES, MESH, PLANAR_GROUP_SIZE, PLANAR_LIGHT, SECTIONS, SPHERE, TEXTURE,
 } from './layout/scene';
+import { planarGroupBounds, planarGroupOrder } from './planarGroups';
 import { packRecord } from './layout/records';
 
 /** Which optional shader code a scene needs (one program per combination). */
@@ -140,7 +141,9 @@ export function packScene(sceneIn: Scene | SceneModel, options: PackOptions = {}
   const environmentPower = mapEnvironmentPower(scene, bounds.radius, options.environmentIntegral);
   const meshEmitters = emissiveMeshes(scene, options.meshes ?? [], options.emissionScale);
   // The other lights' emitters come last, so scenes without them keep version 2's tables.
-  const planarLights = scene.lights.filter((l) => lightArea(l) !== null);
+  // In groups of neighbours (render/planarGroups.ts): the order of the planar-light table.
+  const unorderedPlanar = scene.lights.filter((l) => lightArea(l) !== null);
+  const planarLights = planarGroupOrder(unorderedPlanar.map(planarBound), PLANAR_GROUP_SIZE).map((i) => unorderedPlanar[i]);
   const otherLights = scene.lights.filter((l) => lightSphere(l) === null).flatMap((light) => {
     const p = lightPower(light, bounds);
     return p > 0 ? [{ light, power: p }] : [];
@@ -178,6 +181,7 @@ export function packScene(sceneIn: Scene | SceneModel, options: PackOptions = {}
     data.set(packPlanarLight(light, material, lightPdfs.get(light) ?? 0), (SECTIONS.planarLights + i * PLANAR_LIGHT.texels) * 4);
     data.set(planarBound(light), (SECTIONS.planarBounds + i) * 4);
   });
+  planarGroupBounds(planarLights.map(planarBound), PLANAR_GROUP_SIZE).forEach((sphere, g) => data.set(sphere, (SECTIONS.planarGroups + g) * 4));
   powers.forEach((_, i) => {
     const choice = packRecord(EMITTER_CHOICE, { aliasThreshold: alias.threshold[i], alias: alias.alias[i] });
     data.set(choice, (SECTIONS.emitterChoices + i * EMITTER_CHOICE.texels) * 4);

@@ -55,6 +55,13 @@ const SCENES: Record<string, ReferenceScene> = {
   'light-point': { spp: 128, referenceSpp: 4096 },
   'light-spot': { spp: 128, referenceSpp: 4096 },
   'light-directional': { spp: 128, referenceSpp: 4096 },
+  // Thirteen planar lights in four culling groups (render/planarGroups.ts)
+  // and two delta lights: softboxes seen from below, a disk under one of
+  // them whose black back faces the camera and shades the ground, disks
+  // beside the spheres, and rectangles behind the camera. A light the
+  // culling wrongly skipped would be missing (camera and bounce rays) or
+  // would fail to block the lights behind it (shadow rays).
+  'light-many': { spp: 640 },
 };
 
 describeReferences('convergence to the Mitsuba 3 references', SCENES);

@@ -125,6 +125,9 @@ export const MAX_SCENE_SPHERES = MAX_SPHERES + MAX_LIGHTS;
 export const MAX_MATERIALS = MAX_SCENE_SPHERES + MAX_MESHES + 1;
 export const MAX_EMITTERS = MAX_SCENE_SPHERES + 1 + MAX_MESHES;
 
+/** Planar lights per culling group (render/planarGroups.ts). */
+export const PLANAR_GROUP_SIZE = 4;
+
 /** The tables of the data texture, in order, with their texels. */
 const TABLES = [
   // First and within row 0: the intersection loops fetch it with a constant
@@ -132,6 +135,8 @@ const TABLES = [
   ['sphereGeometry', MAX_SCENE_SPHERES],
   // The planar lights' bounding spheres, which the same loops test first.
   ['planarBounds', MAX_LIGHTS],
+  // Spheres around runs of PLANAR_GROUP_SIZE of them (render/planarGroups.ts).
+  ['planarGroups', Math.ceil(MAX_LIGHTS / PLANAR_GROUP_SIZE)],
   ['materials', MAX_MATERIALS * MATERIAL.texels],
   ['spheres', MAX_SCENE_SPHERES * SPHERE.texels],
   ['emitters', MAX_EMITTERS * EMITTER.texels],
@@ -157,7 +162,7 @@ const SCENE_ROW_BITS = Math.log2(SCENE_ROW_TEXELS);
 if (!Number.isInteger(SCENE_ROW_BITS)) throw new Error('SCENE_ROW_TEXELS must be a power of two');
 /** Texels the tables fill, from texel 0. */
 export const TABLE_TEXELS = TABLES.reduce((sum, [, texels]) => sum + texels, 0);
-if (SECTIONS.planarBounds + MAX_LIGHTS > SCENE_ROW_TEXELS) throw new Error('the sphere-geometry and planar-bounds tables must fit in row 0');
+if (SECTIONS.materials > SCENE_ROW_TEXELS) throw new Error('the sphere-geometry and planar-bound tables must fit in row 0');
 /** Height of the data texture: the rows the tables need. */
 export const DATA_ROWS = Math.ceil(TABLE_TEXELS / SCENE_ROW_TEXELS);
 /** Texels of the data texture, DATA_ROWS whole rows (past TABLE_TEXELS: padding, 0). */
@@ -182,6 +187,8 @@ export function sceneLayoutDefines(): Record<string, number> {
     MESHES_FIRST: SECTIONS.meshes,
     PLANAR_LIGHTS_FIRST: SECTIONS.planarLights,
     PLANAR_BOUNDS_FIRST: SECTIONS.planarBounds,
+    PLANAR_GROUPS_FIRST: SECTIONS.planarGroups,
+    PLANAR_GROUP_SIZE,
     TEXTURES_FIRST: SECTIONS.textures,
     SCENE_ROW_TEXELS,
     SCENE_ROW_BITS,

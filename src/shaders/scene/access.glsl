@@ -19,4 +19,6 @@ EmitterChoice loadEmitterChoice(int i) { return readEmitterChoice(EMITTER_CHOICE
 MeshRecord loadMesh(int i) { return readMeshRecord(MESHES_FIRST + i * MESH_RECORD_TEXELS); }
 // center.xyz, radius of a sphere around planar light i; in row 0 like sphereGeometry.
 vec4 planarLightBound(int i) { return texelFetch(uSceneData, ivec2(PLANAR_BOUNDS_FIRST + i, 0), 0); }
+// center.xyz, radius of a sphere around planar lights [PLANAR_GROUP_SIZE * g, PLANAR_GROUP_SIZE * (g + 1)).
+vec4 planarGroupBound(int g) { return texelFetch(uSceneData, ivec2(PLANAR_GROUPS_FIRST + g, 0), 0); }
 PlanarLight loadPlanarLight(int i) { return readPlanarLight(PLANAR_LIGHTS_FIRST + i * PLANAR_LIGHT_TEXELS); }

@@ -82,6 +82,30 @@ float segmentClearance(vec3 origin, vec3 direction, float tMax, vec4 sphere) {
 }
 
 #if HAS_PLANAR_LIGHTS
+// The range of planar lights whose bounding spheres the segment from
+// origin to origin + tMax * direction passes through (first,
+// last; empty when first > last), found through their groups' spheres
+// (render/planarGroups.ts). Only those get the shape's test. A loop costs
+// what its longest lane in the quad needs (SwiftShader skips a loop's body
+// only when no lane is in it, never a masked if's): here the groups, the
+// members of the lane's range of groups, then its range of lights.
+// Floats: integer selects cost more in SwiftShader.
+vec2 planarCandidates(vec3 origin, vec3 direction, float tMax) {
+  int count = planarLightCount();
+  vec2 groups = vec2(1e4, -1.0);
+  for (int g = 0; g < (count + PLANAR_GROUP_SIZE - 1) / PLANAR_GROUP_SIZE; g++) {
+    bool near = segmentClearance(origin, direction, tMax, planarGroupBound(g)) < 0.0;
+    groups = near ? vec2(min(groups.x, float(g)), float(g)) : groups;
+  }
+  vec2 range = vec2(1e4, -1.0);
+  int last = min(count, (int(groups.y) + 1) * PLANAR_GROUP_SIZE);
+  for (int i = int(groups.x) * PLANAR_GROUP_SIZE; i < last; i++) {
+    bool near = segmentClearance(origin, direction, tMax, planarLightBound(i)) < 0.0;
+    range = near ? vec2(min(range.x, float(i)), float(i)) : range;
+  }
+  return range;
+}
+
 // Nearest t > 0 where the ray meets the planar light's shape, or INFINITY
 // (also for rays parallel to its plane: t is then NaN or infinite, and so
 // is the point, which no inside test accepts). Branch-free (see sphereHitT).
@@ -152,13 +176,11 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   // As for spheres: the loop keeps the nearest distance and slot only.
   float tPlanar = INFINITY;
   int planar = 0;
-  for (int i = 0; i < planarLightCount(); i++) {
-    bool near = segmentClearance(origin, direction, min(hit.t, tPlanar), planarLightBound(i)) < 0.0;
-    for (int k = 0; k < (near ? 1 : 0); k++) {
-      float t = planarHitT(origin, direction, loadPlanarLight(i));
-      planar = t < tPlanar ? i : planar;
-      tPlanar = min(t, tPlanar);
-    }
+  vec2 range = planarCandidates(origin, direction, hit.t);
+  for (int i = int(range.x); i <= int(range.y); i++) {
+    float t = planarHitT(origin, direction, loadPlanarLight(i));
+    planar = t < tPlanar ? i : planar;
+    tPlanar = min(t, tPlanar);
   }
   if (tPlanar < hit.t) planarLightHit(hit, origin, direction, planar, tPlanar);
 #endif
@@ -205,10 +227,8 @@ bool occluded(vec3 origin, vec3 direction, float tMax, int skipSphere) {
   }
   bool blocked = clearance < 0.0 || groundHitT(origin, direction) < tMax;
 #if HAS_PLANAR_LIGHTS
-  for (int i = 0; i < planarLightCount(); i++) {
-    bool near = segmentClearance(origin, direction, tMax, planarLightBound(i)) < 0.0;
-    for (int k = 0; k < (near ? 1 : 0); k++) blocked = blocked || planarHitT(origin, direction, loadPlanarLight(i)) < tMax;
-  }
+  vec2 range = planarCandidates(origin, direction, tMax);
+  for (int i = int(range.x); i <= int(range.y); i++) blocked = blocked || planarHitT(origin, direction, loadPlanarLight(i)) < tMax;
 #endif
 #if HAS_MESHES
   blocked = blocked || meshAnyHit(origin, direction, tMax);
