@@ -196,11 +196,26 @@ function moveObject(app: App, from: { x: number; y: number }, to: { x: number; y
   }, true);
 }
 
-/** Keyboard shortcuts, ignored while typing in a field. */
+/**
+ * Whether a key pressed in `target` belongs to the field (typing): a text
+ * field, an editable element, or a select unless it is marked
+ * `data-shortcuts` (the panel's object list, where Delete removes and Escape
+ * deselects what was chosen in it).
+ */
+function typingIn(target: HTMLElement | null): boolean {
+  if (!target) return false;
+  if (target.tagName === 'SELECT') return target.dataset.shortcuts === undefined;
+  return target.isContentEditable || /^(INPUT|TEXTAREA)$/.test(target.tagName);
+}
+
+/**
+ * Keyboard shortcuts, ignored while typing in a field. Taken in the capture
+ * phase: lil-gui stops every key pressed in its panel from bubbling, and its
+ * buttons and the object list take the shortcuts as the toolbar does.
+ */
 export function attachKeys(app: App, input: ViewportInput): void {
   window.addEventListener('keydown', (event) => {
-    const target = event.target as HTMLElement | null;
-    if (target && (target.isContentEditable || /^(INPUT|TEXTAREA|SELECT)$/.test(target.tagName))) return;
+    if (typingIn(event.target as HTMLElement | null)) return;
     const mod = event.ctrlKey || event.metaKey;
     const key = event.key.toLowerCase();
     if (mod && key === 'z') {
@@ -217,5 +232,5 @@ export function attachKeys(app: App, input: ViewportInput): void {
       // As in Blender and three.js's editor: Escape cancels a drag; with none, it deselects.
       if (!input.cancelDrag()) app.select(null);
     }
-  });
+  }, { capture: true });
 }

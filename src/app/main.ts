@@ -23,6 +23,7 @@ import { EnvironmentMaps, MAP_FILE_PATTERN } from './environmentMaps';
 import { MAP_EXAMPLES, MESH_EXAMPLES, TEXTURE_EXAMPLES } from './examples';
 import { Panel } from './panel';
 import { TextureImages } from './textureImages';
+import { objectLabel } from './sceneObjects';
 import { LIGHT_TYPE_NAMES, lightLabel, type LightType } from '../lights/registry';
 import { encodePfm } from '../image/pfm';
 import type { RenderStats } from './renderLoop';
@@ -350,9 +351,11 @@ function wireContextLoss(app: App): void {
 
 function wireOverlay(app: App): void {
   const svg = $('overlay') as unknown as SVGSVGElement;
+  // Drawn for the pointer only (the panel's object list names the selection): hidden from assistive technology.
   const element = (tag: string, className: string, testId?: string) => {
     const e = document.createElementNS(SVG_NS, tag);
     e.setAttribute('class', className);
+    e.setAttribute('aria-hidden', 'true');
     if (testId) e.dataset.testid = testId;
     return e;
   };
@@ -364,7 +367,7 @@ function wireOverlay(app: App): void {
   const moveHandle = element('circle', 'handle handle-move', 'move-handle');
   const aimHandle = element('circle', 'handle handle-aim', 'aim-handle');
   svg.append(dark, light, aimLineDark, aimLine, moveHandle, aimHandle);
-  const drawSuns = sunMarkerLayer(svg, dark);
+  const drawSuns = sunMarkerLayer(svg, dark, (index) => app.select({ kind: 'light', index }), (index) => objectLabel(app.scene, { kind: 'light', index }) ?? '');
   const place = (circle: Element, at: { x: number; y: number } | undefined, r: number) => {
     circle.setAttribute('display', at ? 'inline' : 'none');
     if (!at) return;
@@ -410,20 +413,36 @@ const SUN_RAYS = Array.from({ length: 8 }, (_, k) => {
 /**
  * The directional lights' markers (a small sun each, under the outline and
  * the handles, inserted before `below`): pressed through the canvas's input,
- * like the handles. Returns the function that places them.
+ * like the handles. Each is also a button for the keyboard: focusable, named
+ * by `label` (light index: "light 3: directional"), and Enter or Space on it
+ * selects its light (`choose`), as a click does. Returns the function that
+ * places them.
  */
-function sunMarkerLayer(svg: SVGSVGElement, below: Element): (suns: { index: number; x: number; y: number }[]) => void {
+function sunMarkerLayer(
+  svg: SVGSVGElement,
+  below: Element,
+  choose: (index: number) => void,
+  label: (index: number) => string,
+): (suns: { index: number; x: number; y: number }[]) => void {
   const markers: SVGGElement[] = [];
   const newMarker = () => {
     const group = document.createElementNS(SVG_NS, 'g');
     group.dataset.testid = 'sun-marker';
-    for (const [tag, className] of [['path', 'sun-rays-dark'], ['path', 'sun-rays'], ['circle', 'sun-disc']]) {
+    group.setAttribute('class', 'sun-marker');
+    group.setAttribute('role', 'button');
+    group.setAttribute('tabindex', '0');
+    for (const [tag, className, r] of [['circle', 'sun-focus', '11'], ['path', 'sun-rays-dark'], ['path', 'sun-rays'], ['circle', 'sun-disc', '3.5']]) {
       const part = document.createElementNS(SVG_NS, tag);
       part.setAttribute('class', className);
       if (tag === 'path') part.setAttribute('d', SUN_RAYS);
-      else part.setAttribute('r', '3.5');
+      else part.setAttribute('r', r);
       group.append(part);
     }
+    group.addEventListener('keydown', (event) => {
+      if (event.key !== 'Enter' && event.key !== ' ') return;
+      event.preventDefault(); // Space would scroll the page
+      choose(Number(group.dataset.light));
+    });
     svg.insertBefore(group, below);
     return group;
   };
@@ -435,6 +454,8 @@ function sunMarkerLayer(svg: SVGSVGElement, below: Element): (suns: { index: num
       const transform = `translate(${sun.x.toFixed(1)} ${sun.y.toFixed(1)})`;
       if (markers[i].getAttribute('transform') !== transform) markers[i].setAttribute('transform', transform);
       if (markers[i].dataset.light !== String(sun.index)) markers[i].dataset.light = String(sun.index);
+      const name = label(sun.index);
+      if (markers[i].getAttribute('aria-label') !== name) markers[i].setAttribute('aria-label', name);
     });
   };
 }

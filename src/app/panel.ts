@@ -17,6 +17,7 @@ import { addMeshControls } from './meshControls';
 import { addEnvironmentControls } from './environmentControls';
 import type { EnvironmentMaps } from './environmentMaps';
 import type { TextureImages } from './textureImages';
+import { objectLabel, objectOfKey, sceneObjects, selectionKey } from './sceneObjects';
 
 const DEFAULT_GROUND: Ground = { height: 0, material: defaultMaterial() };
 
@@ -24,6 +25,9 @@ export class Panel {
   readonly gui: GUI;
   private selectionFolder: GUI;
   private selectionKey = '';
+  /** The selection folder's first row: every object of the scene, to select one without a pointer (kept when the folder is rebuilt). */
+  private objectList: Controller;
+  private objectListKey = '';
   private lastGround: Ground = structuredClone(DEFAULT_GROUND);
   private groundFolder: GUI | null = null;
   private groundControls: Controller[] = [];
@@ -38,6 +42,8 @@ export class Panel {
   ) {
     this.gui = new GUI({ container, title: 'Controls' });
     this.selectionFolder = this.gui.addFolder('Selection');
+    this.objectList = this.addObjectList(this.selectionFolder);
+    this.refreshObjectList();
     this.buildSelection();
     addEnvironmentControls(this.gui, app, maps, (c) => this.tracked(c)).close();
     this.buildGround();
@@ -49,18 +55,48 @@ export class Panel {
 
   /** Shows the scene's current values (after undo, load, drags...). */
   refresh(): void {
+    this.refreshObjectList();
     if (this.currentSelectionKey() !== this.selectionKey) this.buildSelection();
     const ground = this.app.scene.ground ?? this.lastGround;
     if (this.groundFolder && materialLayoutKey(ground.material) !== this.groundLayout) this.buildGroundMaterial(this.groundFolder);
     for (const controller of this.gui.controllersRecursive()) controller.updateDisplay();
   }
 
-  /** What the selection folder was built for: the object and its material's layout (its type's controls, the inputs that are textures). */
+  /**
+   * What the selection folder was built for: the object, its name (a light's
+   * kind, a mesh's file: an undo or a load may put another there) and its
+   * material's layout (its type's controls, the inputs that are textures).
+   */
   private currentSelectionKey(): string {
     const s = this.app.selection;
     if (!s) return '';
     const material = s.kind === 'light' ? undefined : (s.kind === 'sphere' ? this.app.scene.spheres : this.app.scene.meshes)[s.index]?.material;
-    return `${s.kind}:${s.index}:${material ? materialLayoutKey(material) : ''}`;
+    return `${selectionKey(s)}:${objectLabel(this.app.scene, s)}:${material ? materialLayoutKey(material) : ''}`;
+  }
+
+  /**
+   * The object list: choosing an entry selects it as a click on it does
+   * (app.select: the same handles, the same folder); it shows the selection
+   * however it was made. A native select, so the keyboard works it (arrows
+   * pick, and attachKeys takes Delete and Escape there: data-shortcuts).
+   */
+  private addObjectList(folder: GUI): Controller {
+    const app = this.app;
+    const list = folder.add({
+      get object() { return selectionKey(app.selection); },
+      set object(key: string) { app.select(objectOfKey(app.scene, key)); },
+    }, 'object', { none: '' });
+    list.domElement.querySelector('select')!.dataset.shortcuts = '';
+    return list;
+  }
+
+  /** Lists the scene's objects again when they changed (added, removed, undone, loaded); keeps the element, so its focus. */
+  private refreshObjectList(): void {
+    const objects = sceneObjects(this.app.scene);
+    const key = objects.map((o) => o.label).join('\n');
+    if (key === this.objectListKey) return;
+    this.objectListKey = key;
+    this.objectList.options({ none: '', ...Object.fromEntries(objects.map((o) => [o.label, o.key])) });
   }
 
   /** Wires a controller's changes into the edit history. */
@@ -72,10 +108,10 @@ export class Panel {
   private buildSelection(): void {
     const app = this.app;
     const folder = this.selectionFolder;
-    for (const c of [...folder.controllers]) c.destroy();
+    for (const c of [...folder.controllers]) if (c !== this.objectList) c.destroy();
     const s = app.selection;
     this.selectionKey = this.currentSelectionKey();
-    folder.title(s ? `Selected ${s.kind} ${s.index + 1}` : 'Selection (click an object)');
+    folder.title(s ? `Selected ${objectLabel(app.scene, s) ?? `${s.kind} ${s.index + 1}`}` : 'Selection (click an object)');
     if (!s) return;
     const sphere = () => app.scene.spheres[s.index];
     const light = () => app.scene.lights[s.index];

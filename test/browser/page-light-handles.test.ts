@@ -8,7 +8,8 @@
  * face the ground under the cursor; Escape during a drag cancels it (the
  * light turns back, no undo step), else deselects; a deselected directional
  * light's sun marker selects it on a click and turns it on a drag, never
- * orbiting. A scene of spheres with one spot, one
+ * orbiting; the panel's object list and the markers select a light by
+ * keyboard as a click does. A scene of spheres with one spot, one
  * rectangle and one directional light, rendered at 160 pixels.
  */
 import type { Page } from 'playwright-core';
@@ -69,6 +70,78 @@ async function dragTo(page: Page, from: { x: number; y: number }, to: { x: numbe
   const restarts = await watchRestarts(page);
   await drag(page, from, to.x - from.x, to.y - from.y);
   await waitForRestart(restarts);
+}
+
+/** The selection folder's title. */
+const selectionTitle = (page: Page) => page.locator('.lil-root > .lil-children > .lil-gui > .lil-title').first().textContent();
+
+/** How far the handle is drawn from a client point (Infinity while it is hidden). */
+async function handleFrom(page: Page, testId: 'move-handle' | 'aim-handle', p: { x: number; y: number }): Promise<number> {
+  const h = await handle(page, testId);
+  return h ? Math.hypot(h.x - p.x, h.y - p.y) : Infinity;
+}
+
+/**
+ * The panel's object list and the sun markers, by keyboard: the list follows
+ * a selection made by the pointer, picks an object as a click does (its
+ * folder, its handles), takes Delete, Escape and Ctrl+Z, and lists the
+ * lights again after a delete and its undo; Enter or Space on a marker
+ * selects its light. Starts with light 4 (directional) selected.
+ */
+async function selectWithoutPointer(page: Page, camera: Camera, seen: (camera: Camera, p: Vec3) => { x: number; y: number }): Promise<void> {
+  const list = page.locator('#panel select[data-shortcuts]');
+  const listed = ['none', 'light 1: spot', 'light 2: rectangle', 'light 3: directional', 'light 4: directional', 'sphere 1', 'sphere 2'];
+  expect(await list.locator('option').allTextContents()).toEqual(listed);
+  expect(await list.inputValue(), 'follows the marker drag').toBe('light 4: directional');
+
+  // By keyboard: Home (none), then the arrow down to the spot; selected as a click selects it.
+  await list.focus();
+  await page.keyboard.press('Home');
+  await expect.poll(() => selectionTitle(page)).toBe('Selection (click an object)');
+  await page.keyboard.press('ArrowDown');
+  await expect.poll(() => selectionTitle(page)).toBe('Selected light 1: spot');
+  const spotAt = seen(camera, (await lights(page))[0].position!);
+  await expect.poll(() => handleFrom(page, 'move-handle', spotAt), { message: 'its move handle on it' }).toBeLessThan(1);
+  expect(await page.locator('#panel .lil-name', { hasText: /^cutoff/ }).count(), "the spot's controls").toBeGreaterThan(0);
+  // Escape in the list deselects (list.press: reading the scene clicked "Save JSON", which took the focus).
+  await list.press('Escape');
+  await expect.poll(() => list.inputValue()).toBe('none');
+  expect(await handle(page, 'move-handle')).toBeNull();
+
+  // A click on a sphere: the list shows it.
+  const sphereAt = seen(camera, [-1.2, 0.8, 0]);
+  await page.mouse.click(Math.round(sphereAt.x), Math.round(sphereAt.y));
+  await expect.poll(() => list.inputValue()).toBe('sphere 1');
+  expect(await selectionTitle(page)).toBe('Selected sphere 1');
+
+  // Delete in the list removes what it chose (light 4: the scene keeps a directional light, so its program); the list
+  // follows, and follows the undo.
+  await list.selectOption({ label: 'light 4: directional' });
+  await expect.poll(() => selectionTitle(page)).toBe('Selected light 4: directional');
+  await list.press('Delete');
+  await expect.poll(async () => (await lights(page)).length).toBe(3);
+  expect(await list.locator('option').allTextContents()).toEqual(listed.filter((l) => l !== 'light 4: directional'));
+  expect(await list.inputValue()).toBe('none');
+  await list.press('Control+z');
+  await expect.poll(async () => (await lights(page)).length).toBe(4);
+  expect(await list.locator('option').allTextContents()).toEqual(listed);
+
+  // A marker is a named button: focusable, Enter selects its light (its aim handle on it), Space another's.
+  const marker = (index: number) => page.locator(`[data-testid="sun-marker"][data-light="${index}"]`);
+  const about = await marker(2).evaluate((m) => [m.getAttribute('role'), m.getAttribute('aria-label'), m.getAttribute('tabindex'), m.closest('[aria-hidden="true"]') === null]);
+  expect(about).toEqual(['button', 'light 3: directional', '0', true]);
+  await marker(2).focus();
+  expect(await marker(2).evaluate((m) => document.activeElement === m), 'focusable').toBe(true);
+  await page.keyboard.press('Enter');
+  await expect.poll(() => selectionTitle(page)).toBe('Selected light 3: directional');
+  expect(await list.inputValue()).toBe('light 3: directional');
+  expect(await handleFrom(page, 'aim-handle', await sunMarker(page, 2))).toBeLessThan(1);
+  await marker(3).focus();
+  await page.keyboard.press(' ');
+  await expect.poll(() => list.inputValue()).toBe('light 4: directional');
+  // Delete and Escape work on a light a marker chose: Escape deselects.
+  await page.keyboard.press('Escape');
+  await expect.poll(() => list.inputValue()).toBe('none');
 }
 
 describe('page: light handles', () => {
@@ -247,8 +320,12 @@ describe('page: light handles', () => {
     const expectedTurn = draggedLight({ kind: 'aim', index: 3, light: before3, camera: orbited, start: ray(otherFrom, orbited) }, ray(otherTo, orbited), null) as { direction: Vec3 };
     (turned.lights as Lights)[3].direction!.forEach((x, i) => expect(x).toBeCloseTo(expectedTurn.direction[i], 3));
 
+    const keyboardStarted = performance.now();
+    await selectWithoutPointer(page, orbited, seen);
+    console.log(`light handles, object list and markers by keyboard: ${((performance.now() - keyboardStarted) / 1000).toFixed(1)} s`);
+
     await waitForSpp(page, 2);
-    expect((await probe(page)).links - linksLoaded, 'handle drags, undo and redo link no program').toBe(0);
+    expect((await probe(page)).links - linksLoaded, 'handle drags, undo and redo, selecting from the list or a marker link no program').toBe(0);
     expect(errors).toEqual([]);
     await page.close();
     console.log(`light handles: ${((performance.now() - started) / 1000).toFixed(1)} s`);

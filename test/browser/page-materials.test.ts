@@ -34,6 +34,7 @@ function control(page: Page, name: string): Locator {
   return selectionFolder(page).locator('.lil-controller').filter({ has: page.locator('.lil-name', { hasText: new RegExp(`^${name}$`) }) });
 }
 
+/** The selection folder's rows: the object list ("object"), then the object's controls. */
 async function labels(page: Page): Promise<string[]> {
   return selectionFolder(page).locator('.lil-controller .lil-name').allTextContents();
 }
@@ -88,7 +89,7 @@ describe('the page edits version-2 materials', () => {
   it('switches a sphere to glass, sets ior and emission, saves version 2; undo restores the standard material', async () => {
     const { page, errors } = await openPage(harness(), { initScript: instrument });
     await selectSphere(page, 0);
-    expect(await labels(page)).toEqual(['material', 'color', 'roughness', 'emission color', 'emission intensity', 'radius', 'Delete']);
+    expect(await labels(page)).toEqual(['object', 'material', 'color', 'roughness', 'emission color', 'emission intensity', 'radius', 'Delete']);
     const linksBefore = (await probe(page)).links;
     const renderingSince = await page.evaluate(() => performance.now());
     await waitForSpp(page, (await spp(page)) + 3);
@@ -98,7 +99,7 @@ describe('the page edits version-2 materials', () => {
     const switchStart = await page.evaluate(() => performance.now());
     const blockedMs = await switchType(page, 'dielectric');
     await control(page, 'ior').waitFor();
-    expect(await labels(page)).toEqual(['material', 'tint', 'roughness', 'ior', 'emission color', 'emission intensity', 'radius', 'Delete']);
+    expect(await labels(page)).toEqual(['object', 'material', 'tint', 'roughness', 'ior', 'emission color', 'emission intensity', 'radius', 'Delete']);
     const sppAfterSwitch = await spp(page);
     await waitForSpp(page, sppAfterSwitch + 3);
     const freezeMs = await longestFrameGap(page, switchStart);
@@ -183,7 +184,7 @@ describe('the page edits version-2 materials', () => {
     await selectSphere(page, 1);
     await switchType(page, 'conductor');
     await control(page, 'metal').waitFor();
-    expect(await labels(page)).toEqual(['material', 'metal', 'tint', 'roughness', 'emission color', 'emission intensity', 'radius', 'Delete']);
+    expect(await labels(page)).toEqual(['object', 'material', 'metal', 'tint', 'roughness', 'emission color', 'emission intensity', 'radius', 'Delete']);
     const saved = await savedScene(page);
     expect(saved.version).toBe(3);
     expect(((saved.spheres as SavedSphere[])[1]).material).toMatchObject({ type: 'conductor', metal: 'Al', color: [1, 1, 1] });
