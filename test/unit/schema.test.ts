@@ -55,10 +55,10 @@ function thrown(run: () => unknown): SceneError {
 }
 
 describe('valid scenes', () => {
-  it('finds the twenty-three fixtures', () => {
+  it('finds the twenty-four fixtures', () => {
     expect(fixtureNames.sort()).toEqual([
       'bench', 'bunny', 'conductor', 'emissive', 'emissive-mesh', 'emissive-tilted-normals', 'envmap', 'furnace', 'glass', 'glossy', 'gltf-materials', 'instanced',
-      'light-directional', 'light-disk', 'light-point', 'light-rectangle', 'light-spot', 'lights', 'mirrors', 'principled', 'seed', 'small-light',
+      'light-directional', 'light-disk', 'light-many', 'light-point', 'light-rectangle', 'light-spot', 'lights', 'mirrors', 'principled', 'seed', 'small-light',
       'textured',
     ]);
   });
