@@ -51,6 +51,21 @@ const PATCHES: Record<string, [string | RegExp, string][]> = {
   noGuide: [['#if CAUSTIC_GUIDES > 0', '#if 0']],
   // Caustic guide without the fixed-point step towards the reflection point.
   noGuideStep: [['  h = normalize(normalize(x - p) + normalize(light.xyz - p));\n  p = mirror.xyz + mirror.w * h;\n', '']],
+  // Version 3 cost shares (lights.json and the principled scenes):
+  // NEE removed.
+  noNee3: [['vec3 direct = sampleDirectLight(hit, frame, wo, bsdf, shading, uLight.xyz);', 'vec3 direct = vec3(0.0);']],
+  // NEE's shadow query removed (every sample visible).
+  noShadow3: [['float transmitted = shadowTransmittance(origin, light.direction, light.distance, light.skipSphere);', 'float transmitted = 1.0;']],
+  // The planar lights left out of closest-hit queries (wrong image: cost share).
+  noPlanarClosest: [['vec2 range = planarCandidates(origin, direction, hit.t);', 'vec2 range = vec2(1e4, -1.0);']],
+  // NEE's BSDF evaluation replaced by Lambert's.
+  lambertNeeEval: [['vec3 f = bsdfEval(bsdf, wo, wi, bsdfPdf) * normalMapFactor(shading, light.direction);', 'vec3 f = vec3(max(wi.z, 0.0) / PI); bsdfPdf = max(wi.z, 0.0) / PI;']],
+  // Light sampling: every emitter taken as the first one (no alias-table fetch or kind dispatch beyond it).
+  firstEmitter: [['Emitter e = loadEmitter(keep ? slot : choice.alias);', 'Emitter e = loadEmitter(0);']],
+  // The rectangle by area only (no spherical-rectangle sampling).
+  rectangleByArea: [['bool rectangleBySolidAngle(float omega) { return omega > RECTANGLE_MIN_SOLID_ANGLE && omega < RECTANGLE_MAX_SOLID_ANGLE; }', 'bool rectangleBySolidAngle(float omega) { return false; }']],
+  // Only the rectangle's and the sphere's samples compiled into the dispatch (wrong image: cost share of the other kinds).
+  onlyRectangleSample: [[/  if \(e\.kind == EMITTER_(DISK|POINT|SPOT|DIRECTIONAL)\) s = \w+LightSample\(e, x, u\);\n/g, '']],
   // The camera: a fixed direction per pixel.
   noCamera: [[/void generateCameraRay\(vec2 pixel, out vec3 origin, out vec3 direction\) \{/,
     'void generateCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) { origin = uCameraPosition; direction = normalize(vec3(pixel / uResolution - 0.5, -1.0)); return; }\nvoid unusedCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) {']],
@@ -117,7 +132,13 @@ async function main(argv: string[]): Promise<void> {
   });
   await page.reload();
   await page.waitForFunction(() => document.body.dataset.ready === 'true');
-  const use = (text: string) => page.evaluate((t) => ((window as unknown as { __traceSource?: string }).__traceSource = t), text);
+  // A fresh page per use: the renderer caches its programs by feature
+  // switches, so a variant set on a page that compiled another would not compile.
+  const use = async (text: string) => {
+    await page.reload();
+    await page.waitForFunction(() => document.body.dataset.ready === 'true');
+    await page.evaluate((t) => ((window as unknown as { __traceSource?: string }).__traceSource = t), text);
+  };
   // The feature switches the page compiles this scene with (its own trace program's defines).
   await session.load(scene, { width: 16, height: 16, seed: 1 } as LoadOptions, files);
   const pageText = await page.evaluate(() => (window as unknown as { __pageTraceSource?: string }).__pageTraceSource ?? '');
