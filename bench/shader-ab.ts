@@ -66,6 +66,9 @@ const PATCHES: Record<string, [string | RegExp, string][]> = {
   rectangleByArea: [['bool rectangleBySolidAngle(float omega) { return omega > RECTANGLE_MIN_SOLID_ANGLE && omega < RECTANGLE_MAX_SOLID_ANGLE; }', 'bool rectangleBySolidAngle(float omega) { return false; }']],
   // Only the rectangle's and the sphere's samples compiled into the dispatch (wrong image: cost share of the other kinds).
   onlyRectangleSample: [[/  if \(e\.kind == EMITTER_(DISK|POINT|SPOT|DIRECTIONAL)\) s = \w+LightSample\(e, x, u\);\n/g, '']],
+  // Each light kind's sample in a 0/1-trip loop, skipped when no lane of the quad picked that kind
+  // (lights.json, 2026-12-02: 0.92x, the loops cost more than the samples they skip).
+  loopDispatch: [[/  if \(e\.kind == (EMITTER_\w+)\) s = (\w+LightSample)\(e, x, u\);/g, '  for (int k = 0; k < (e.kind == $1 ? 1 : 0); k++) s = $2(e, x, u);']],
   // The camera: a fixed direction per pixel.
   noCamera: [[/void generateCameraRay\(vec2 pixel, out vec3 origin, out vec3 direction\) \{/,
     'void generateCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) { origin = uCameraPosition; direction = normalize(vec3(pixel / uResolution - 0.5, -1.0)); return; }\nvoid unusedCameraRay(vec2 pixel, out vec3 origin, out vec3 direction) {']],
