@@ -143,7 +143,10 @@ export function packScene(sceneIn: Scene | SceneModel, options: PackOptions = {}
   // The other lights' emitters come last, so scenes without them keep version 2's tables.
   // In groups of neighbours (render/planarGroups.ts): the order of the planar-light table.
   const unorderedPlanar = scene.lights.filter((l) => lightArea(l) !== null);
-  const planarLights = planarGroupOrder(unorderedPlanar.map(planarBound), PLANAR_GROUP_SIZE).map((i) => unorderedPlanar[i]);
+  const unorderedBounds = unorderedPlanar.map(planarBound);
+  const planarOrder = planarGroupOrder(unorderedBounds, PLANAR_GROUP_SIZE);
+  const planarLights = planarOrder.map((i) => unorderedPlanar[i]);
+  const planarBounds = planarOrder.map((i) => unorderedBounds[i]);
   const otherLights = scene.lights.filter((l) => lightSphere(l) === null).flatMap((light) => {
     const p = lightPower(light, bounds);
     return p > 0 ? [{ light, power: p }] : [];
@@ -179,9 +182,9 @@ export function packScene(sceneIn: Scene | SceneModel, options: PackOptions = {}
   planarLights.forEach((light, i) => {
     const material = addMaterial(packEmitterOnly(lightEmitted(light)));
     data.set(packPlanarLight(light, material, lightPdfs.get(light) ?? 0), (SECTIONS.planarLights + i * PLANAR_LIGHT.texels) * 4);
-    data.set(planarBound(light), (SECTIONS.planarBounds + i) * 4);
+    data.set(planarBounds[i], (SECTIONS.planarBounds + i) * 4);
   });
-  planarGroupBounds(planarLights.map(planarBound), PLANAR_GROUP_SIZE).forEach((sphere, g) => data.set(sphere, (SECTIONS.planarGroups + g) * 4));
+  planarGroupBounds(planarBounds, PLANAR_GROUP_SIZE).forEach((sphere, g) => data.set(sphere, (SECTIONS.planarGroups + g) * 4));
   powers.forEach((_, i) => {
     const choice = packRecord(EMITTER_CHOICE, { aliasThreshold: alias.threshold[i], alias: alias.alias[i] });
     data.set(choice, (SECTIONS.emitterChoices + i * EMITTER_CHOICE.texels) * 4);
