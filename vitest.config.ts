@@ -11,7 +11,6 @@ import { configDefaults, defineConfig } from 'vitest/config';
  */
 const TIMED = [
   'test/browser/first-pixel.test.ts',
-  'test/browser/bench.test.ts',
   'test/browser/denoise.test.ts',
   'test/browser/context-loss.test.ts',
   'test/browser/cli-robustness.test.ts',
