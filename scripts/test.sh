@@ -16,4 +16,4 @@ fi
 npm run typecheck
 bash scripts/audit.sh
 npm run build
-npx vitest run "$@"
+npx vitest run --reporter=default --reporter=json --outputFile.json=test-output/vitest-report.json "$@"
