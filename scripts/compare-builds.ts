@@ -2,11 +2,12 @@
  * Renders scenes with two builds of the page at the same seed and reports
  * whether the linear images are bit-identical (and the largest difference).
  *   npx tsx scripts/compare-builds.ts OTHER_WEB_ROOT [--spp 8] [scene.json ...]
- * Used to check that a restructuring changes nothing for version-1 scenes.
+ * Used to check that a restructuring changes nothing (the files a scene names are read as the CLI reads them).
  */
 import { readFileSync } from 'node:fs';
 import { openRenderSession } from '../src/node/session';
 import { parseSceneText } from '../src/scene/schema';
+import { readSceneFiles } from '../src/node/sceneFiles';
 
 async function main(argv: string[]): Promise<void> {
   const other = argv[0];
@@ -18,9 +19,10 @@ async function main(argv: string[]): Promise<void> {
   try {
     for (const file of files) {
       const scene = parseSceneText(readFileSync(file, 'utf8'));
+      const { files: assets } = await readSceneFiles(scene, file); // environment maps, meshes, textures
       const images = [];
       for (const session of [ours, theirs]) {
-        await session.load(scene, { width: scene.image.width, height: scene.image.height, seed: 7 });
+        await session.load(scene, { width: scene.image.width, height: scene.image.height, seed: 7 }, assets);
         await session.render(spp);
         images.push(await session.readLinear());
       }

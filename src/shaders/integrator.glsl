@@ -80,9 +80,9 @@ bool scatters(Hit hit, Material material) { return hit.kind != HIT_NONE && bsdfS
 // sampling at the previous vertex (unless that vertex scattered through a
 // Dirac delta).
 vec3 emitted(Hit hit, Material material, vec3 direction, vec3 previousPosition, bool previousDelta, float previousPdf) {
-  float weight = previousDelta ? 1.0 : powerHeuristic(previousPdf, lightPdf(previousPosition, direction, hit));
-  vec3 surface = dot(direction, hit.normal) < 0.0 ? surfaceEmission(material, hit.uv) : vec3(0.0);
-  return (hit.kind == HIT_NONE ? escapedRadiance(direction) : surface) * weight;
+  float weight = pick(previousDelta, 1.0, powerHeuristic(previousPdf, lightPdf(previousPosition, direction, hit)));
+  vec3 surface = pick(dot(direction, hit.normal) < 0.0, surfaceEmission(material, hit.uv), vec3(0.0));
+  return pick(hit.kind == HIT_NONE, escapedRadiance(direction), surface) * weight;
 }
 
 // Next-event estimation at a surface vertex: f * Le * |cos| / pdf of one
@@ -93,13 +93,17 @@ vec3 sampleDirectLight(Hit hit, mat3 frame, vec3 wo, Bsdf bsdf, ShadingNormal sh
   vec3 wi = light.direction * frame;  // transpose(frame) * direction: into the shading frame
   float bsdfPdf;
   vec3 f = bsdfEval(bsdf, wo, wi, bsdfPdf) * normalMapFactor(shading, light.direction);
-  if (light.pdf <= 0.0 || bsdfPdf <= 0.0) return vec3(0.0);
-  bsdfPdf = guidedPdf(bsdfPdf, light.direction);  // BSDF sampling is mixed with the caustic guides
-  vec3 origin = spawnRayOrigin(hit, light.direction);
-  float transmitted = shadowTransmittance(origin, light.direction, light.distance, light.skipSphere);
-  // A Dirac delta light is found by this technique alone: no MIS.
-  float weight = light.delta ? 1.0 : powerHeuristic(light.pdf, bsdfPdf);
-  return f * light.radiance * (transmitted * weight / light.pdf);
+  vec3 contribution = vec3(0.0);
+  // An if without an else, and one return (see pick() in common/math.glsl).
+  if (light.pdf > 0.0 && bsdfPdf > 0.0) {
+    bsdfPdf = guidedPdf(bsdfPdf, light.direction);  // BSDF sampling is mixed with the caustic guides
+    vec3 origin = spawnRayOrigin(hit, light.direction);
+    float transmitted = shadowTransmittance(origin, light.direction, light.distance, light.skipSphere);
+    // A Dirac delta light is found by this technique alone: no MIS.
+    float weight = pick(light.delta, 1.0, powerHeuristic(light.pdf, bsdfPdf));
+    contribution = f * light.radiance * (transmitted * weight / light.pdf);
+  }
+  return contribution;
 }
 
 // The rest of a path whose camera ray hit `hit` (see scatters), given the
@@ -124,8 +128,8 @@ vec3 traceRadiance(vec3 direction, Hit hit, Material material, vec3 radiance) {
     vec4 uLight = rand4();
     vec4 uBsdf = rand4();
 #if LOW_DISCREPANCY
-    uLight.xy = depth == 0 ? ldLight() : uLight.xy;
-    uBsdf.xy = depth == 0 ? ldBsdf() : uBsdf.xy;
+    uLight.xy = pick(depth == 0, ldLight(), uLight.xy);
+    uBsdf.xy = pick(depth == 0, ldBsdf(), uBsdf.xy);
 #endif
 
     // Caustic guides at this vertex (see lights/caustic_guide.glsl).

@@ -59,7 +59,7 @@ vec3 surfaceEmission(Material m, vec2 uv) {
 // The normal the BSDF's frame is built around: a two-sided material seen
 // from behind shades as from the front (Mitsuba's `twosided`).
 vec3 facingNormal(Surface s, Bsdf b, vec3 direction) {
-  return b.twoSided && dot(direction, s.normal) > 0.0 ? -s.normal : s.normal;
+  return pick(b.twoSided && dot(direction, s.normal) > 0.0, -s.normal, s.normal);
 }
 
 // The shading normal after the material's normal map (exactly Mitsuba's

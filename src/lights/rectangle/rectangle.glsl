@@ -31,7 +31,7 @@ bool rectangleBySolidAngle(float omega) { return omega > RECTANGLE_MIN_SOLID_ANG
 
 // The angle between unit vectors, accurate near 0 and pi (pbrt-v4's AngleBetween).
 float angleBetween(vec3 a, vec3 b) {
-  return dot(a, b) < 0.0 ? PI - 2.0 * asin(min(1.0, length(a + b) * 0.5)) : 2.0 * asin(min(1.0, length(b - a) * 0.5));
+  return pick(dot(a, b) < 0.0, PI - 2.0 * asin(min(1.0, length(a + b) * 0.5)), 2.0 * asin(min(1.0, length(b - a) * 0.5)));
 }
 
 // A point of the rectangle (corner s, edges ex and ey) uniformly distributed
@@ -41,7 +41,7 @@ vec3 sampleSphericalRectangle(vec3 x, vec3 s, vec3 ex, vec3 ey, vec2 rnd) {
   vec3 rx = ex / exl, ry = ey / eyl, rz = cross(rx, ry);
   vec3 d = s - x;
   float x0 = dot(d, rx), y0 = dot(d, ry), z0 = dot(d, rz);
-  rz = z0 > 0.0 ? -rz : rz;  // z towards the rectangle's far side from x
+  rz = pick(z0 > 0.0, -rz, rz);    // z towards the rectangle's far side from x
   z0 = -abs(z0);
   float x1 = x0 + exl, y1 = y0 + eyl;
   vec3 v00 = vec3(x0, y0, z0), v01 = vec3(x0, y1, z0), v10 = vec3(x1, y0, z0), v11 = vec3(x1, y1, z0);
@@ -56,7 +56,7 @@ vec3 sampleSphericalRectangle(vec3 x, vec3 s, vec3 ex, vec3 ey, vec2 rnd) {
   float dd = sqrt(xu * xu + z0 * z0);
   float h0 = y0 / sqrt(dd * dd + y0 * y0), h1 = y1 / sqrt(dd * dd + y1 * y1);
   float hv = h0 + rnd.y * (h1 - h0);
-  float yv = hv * hv < 1.0 - 1e-4 ? hv * dd / sqrt(1.0 - hv * hv) : y1;
+  float yv = pick(hv * hv < 1.0 - 1e-4, hv * dd / sqrt(1.0 - hv * hv), y1);
   return x + rx * xu + ry * yv + rz * z0;
 }
 
@@ -67,8 +67,8 @@ float rectanglePdfGiven(float omega, vec3 x, vec3 p, vec3 u, vec3 v) {
   vec3 toP = p - x;
   float d2 = dot(toP, toP);
   float cosLight = abs(dot(toP, normalize(cross(u, v)))) * inversesqrt(d2);
-  float byArea = cosLight > 0.0 ? d2 / (cosLight * rectangleArea(u, v)) : 0.0;
-  return rectangleBySolidAngle(omega) ? 1.0 / omega : byArea;
+  float byArea = pick(cosLight > 0.0, d2 / (cosLight * rectangleArea(u, v)), 0.0);
+  return pick(rectangleBySolidAngle(omega), 1.0 / omega, byArea);
 }
 
 float rectanglePdf(vec3 x, vec3 p, vec3 c, vec3 u, vec3 v) { return rectanglePdfGiven(rectangleSolidAngle(x, c, u, v), x, p, u, v); }

@@ -20,7 +20,7 @@ LightCone lightCone(vec3 x, vec4 sphere) {
 // Density, in solid angle at x, of a direction drawn towards the sphere.
 float sphereEmitterPdf(vec3 x, vec4 sphere) {
   LightCone cone = lightCone(x, sphere);
-  return cone.oneMinusCosMax > 0.0 ? uniformConePdf(cone.oneMinusCosMax) : 0.0;
+  return pick(cone.oneMinusCosMax > 0.0, uniformConePdf(cone.oneMinusCosMax), 0.0);
 }
 
 // A direction from x towards the sphere (u: .x polar, .y azimuth), its
@@ -29,7 +29,7 @@ vec3 sampleSphereEmitter(vec3 x, vec4 sphere, vec2 u, out float pdf, out float d
   LightCone cone = lightCone(x, sphere);
   float oneMinusCos = u.x * cone.oneMinusCosMax;
   vec3 wi = basisAround(cone.axis) * sampleUniformCone(u, cone.oneMinusCosMax);
-  pdf = cone.oneMinusCosMax > 0.0 ? uniformConePdf(cone.oneMinusCosMax) : 0.0;
+  pdf = pick(cone.oneMinusCosMax > 0.0, uniformConePdf(cone.oneMinusCosMax), 0.0);
   // Where the direction meets the sphere, from the cone's geometry:
   // t = d cos - sqrt(r^2 - d^2 sin^2) (a rim direction that misses by
   // rounding ends at the tangent point).

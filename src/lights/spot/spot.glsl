@@ -4,7 +4,7 @@
 // transition, 0 from the cutoff on. A Dirac delta.
 
 float spotFalloff(SpotLight p, float cosTheta) {
-  float beam = cosTheta >= p.cosBeam ? 1.0 : (p.cutoff - acos(clamp(cosTheta, -1.0, 1.0))) * p.invTransition;
+  float beam = pick(cosTheta >= p.cosBeam, 1.0, (p.cutoff - acos(clamp(cosTheta, -1.0, 1.0))) * p.invTransition);
   return cosTheta > p.cosCutoff ? beam : 0.0;
 }
 

@@ -48,7 +48,7 @@ vec3 conductorSampleDirection(Bsdf b, vec3 wo, vec3 u, vec2 circle, out bool isD
   ConductorParams m = conductorParams(b);
   isDelta = conductorSmooth(m);
   deltaWeight = fresnelConductor(wo.z, m.eta, m.k) * m.color;
-  vec3 h = isDelta ? vec3(0.0, 0.0, 1.0) : sampleGgxVisibleNormal(wo, conductorAlpha(m), sqrt(u.x) * circle);
+  vec3 h = pick(isDelta, vec3(0.0, 0.0, 1.0), sampleGgxVisibleNormal(wo, conductorAlpha(m), sqrt(u.x) * circle));
   vec3 wi = reflect(-wo, h);
   return wo.z > 0.0 && wi.z > 0.0 ? wi : vec3(0.0);
 }

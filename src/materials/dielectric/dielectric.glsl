@@ -18,9 +18,9 @@ vec3 dielectricEval(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
   if (dielectricSmooth(m) || wo.z == 0.0 || wi.z == 0.0) return vec3(0.0);
   float alpha = dielectricAlpha(m);
   bool isReflection = wo.z * wi.z > 0.0;
-  float eta = wo.z > 0.0 ? m.ior : 1.0 / m.ior;
+  float eta = pick(wo.z > 0.0, m.ior, 1.0 / m.ior);
   vec3 h = normalize(wo + wi * (isReflection ? 1.0 : eta));
-  h = h.z < 0.0 ? -h : h;
+  h = pick(h.z < 0.0, -h, h);
   float woh = dot(wo, h);
   float wih = dot(wi, h);
   // A microfacet is seen from one side only (Mitsuba's smith_g1 and pdf).
@@ -54,17 +54,17 @@ vec3 dielectricSampleDirection(Bsdf b, vec3 wo, vec3 u, vec2 circle, out bool is
   isDelta = dielectricSmooth(m);
   float side = wo.z < 0.0 ? -1.0 : 1.0;
   vec3 woUp = side * wo;
-  vec3 h = isDelta ? vec3(0.0, 0.0, 1.0) : sampleGgxVisibleNormal(woUp, dielectricAlpha(m), sqrt(u.x) * circle);
+  vec3 h = pick(isDelta, vec3(0.0, 0.0, 1.0), sampleGgxVisibleNormal(woUp, dielectricAlpha(m), sqrt(u.x) * circle));
   float woh = dot(wo, h);
   float cosThetaT, etaTI;
   float F = fresnelDielectric(woh, m.ior, cosThetaT, etaTI);
   bool reflects = u.z < F;
-  deltaWeight = reflects ? vec3(1.0) : m.color * (etaTI * etaTI);
-  vec3 wi = reflects ? 2.0 * woh * h - wo : h * (woh * etaTI + cosThetaT) - wo * etaTI;
+  deltaWeight = pick(reflects, vec3(1.0), m.color * (etaTI * etaTI));
+  vec3 wi = pick(reflects, 2.0 * woh * h - wo, h * (woh * etaTI + cosThetaT) - wo * etaTI);
   // A rough microfacet can send the reflection below the macro surface or
   // the refraction above it: no sample (as Mitsuba's roughdielectric), since
   // bsdfEval would weigh that direction by the other lobe's pdf.
-  bool sideOk = reflects ? wi.z * wo.z > 0.0 : wi.z * wo.z < 0.0;
+  bool sideOk = pick(reflects, wi.z * wo.z > 0.0, wi.z * wo.z < 0.0);
   return isDelta || sideOk ? wi : vec3(0.0);
 }
 

@@ -30,7 +30,7 @@
 // Mitsuba's GGX smith_g1: 0 where v sees the back of the microfacet m.
 float principledG1(vec3 v, vec3 m, float alpha) {
   float xy = alpha * alpha * (v.x * v.x + v.y * v.y);
-  float g = xy == 0.0 ? 1.0 : 2.0 / (1.0 + sqrt(1.0 + xy / (v.z * v.z)));
+  float g = pick(xy == 0.0, 1.0, 2.0 / (1.0 + sqrt(1.0 + xy / (v.z * v.z))));
   return dot(v, m) * v.z <= 0.0 ? 0.0 : g;
 }
 
@@ -53,7 +53,7 @@ float principledGtr1(vec3 m, float alpha) {
 float principledSmithGgx1(vec3 v, vec3 wh, float alpha) {
   float c2 = v.z * v.z;
   float tan2 = (1.0 - c2) / c2;
-  float g = v.z == 1.0 ? 1.0 : 2.0 / (1.0 + sqrt(1.0 + alpha * alpha * tan2));
+  float g = pick(v.z == 1.0, 1.0, 2.0 / (1.0 + sqrt(1.0 + alpha * alpha * tan2)));
   return dot(v, wh) * v.z <= 0.0 ? 0.0 : g;
 }
 
@@ -67,17 +67,18 @@ float principledSchlickWeight(float c) {
 // transmitted angle where the path goes into the optically thinner side.
 vec3 principledSchlick(vec3 r0, float cosThetaI, float eta) {
   bool outside = cosThetaI >= 0.0;
-  float etaIT = outside ? eta : 1.0 / eta;
-  float etaTI = outside ? 1.0 / eta : eta;
+  float invEta = 1.0 / eta;
+  float etaIT = outside ? eta : invEta;
+  float etaTI = outside ? invEta : eta;
   float cosT = sqrt(max(0.0, 1.0 - (1.0 - cosThetaI * cosThetaI) * etaTI * etaTI));
-  float w = principledSchlickWeight(etaIT > 1.0 ? abs(cosThetaI) : cosT);
+  float w = principledSchlickWeight(pick(etaIT > 1.0, abs(cosThetaI), cosT));
   return mix(vec3(w), vec3(1.0), r0);
 }
 
 float principledLuminance(vec3 c) { return dot(c, vec3(0.212671, 0.715160, 0.072169)); }
 vec3 principledTint(vec3 c) {
   float lum = principledLuminance(c);
-  return lum > 0.0 ? c / lum : vec3(1.0);
+  return pick(lum > 0.0, c / lum, vec3(1.0));
 }
 
 float principledAlpha(PrincipledParams p) { return max(0.001, p.roughness * p.roughness); }
@@ -88,8 +89,11 @@ float principledBsdf(PrincipledParams p) { return (1.0 - p.metallic) * p.specTra
 // (turned to wo's side) and wi on its front (reflection) or back
 // (transmission).
 bool principledCompatible(vec3 m, vec3 wo, vec3 wi, bool reflection) {
-  vec3 ms = wo.z < 0.0 ? -m : m;
-  return dot(wo, ms) > 0.0 && (reflection ? dot(wi, ms) > 0.0 : dot(wi, ms) < 0.0);
+  vec3 ms = pick(wo.z < 0.0, -m, m);
+  float wims = dot(wi, ms);
+  bool wiSide = pick(reflection, wims > 0.0, wims < 0.0);
+  bool woSide = dot(wo, ms) > 0.0;
+  return woSide && wiSide;
 }
 
 // The lobe-selection probabilities (diffuse, clear coat, reflection,
@@ -98,31 +102,38 @@ bool principledCompatible(vec3 m, vec3 wo, vec3 wi, bool reflection) {
 vec4 principledLobeProbabilities(PrincipledParams p, bool front, float F) {
   float bsdf = principledBsdf(p);
   bool transmits = p.specTrans > 0.0;
-  vec4 prob = front
-    ? vec4(principledBrdf(p), 0.25 * p.clearcoat, 1.0 - bsdf * (1.0 - F), transmits ? bsdf * (1.0 - F) : 0.0)
-    : vec4(0.0, 0.0, F, transmits ? 1.0 - F : 0.0);
+  vec4 outside = vec4(principledBrdf(p), 0.25 * p.clearcoat, 1.0 - bsdf * (1.0 - F), pick(transmits, bsdf * (1.0 - F), 0.0));
+  vec4 inside = vec4(0.0, 0.0, F, pick(transmits, 1.0 - F, 0.0));
+  vec4 prob = front ? outside : inside;
   return prob / (prob.x + prob.y + prob.z + prob.w);
 }
 
 // A side Mitsuba samples and evaluates: any outside, inside only where the
 // transmission lobe has weight.
-bool principledActive(PrincipledParams p, vec3 wo) { return wo.z > 0.0 || (wo.z < 0.0 && principledBsdf(p) > 0.0); }
+bool principledActive(PrincipledParams p, vec3 wo) {
+  bool transmitsInside = wo.z < 0.0 && principledBsdf(p) > 0.0;
+  return wo.z > 0.0 || transmitsInside;
+}
 
+// Straight-line code (no early return, no if/else: see pick() in
+// common/math.glsl); the lobes' ifs have no else.
 vec3 principledEval(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
   PrincipledParams p = principledParams(b);
-  pdf = 0.0;
   bool reflects = wo.z * wi.z > 0.0;
   bool refracts = wo.z * wi.z < 0.0;
-  if (!principledActive(p, wo) || !(reflects || refracts)) return vec3(0.0);
+  bool sided = reflects || refracts;
+  bool applies = principledActive(p, wo) && sided;
   bool front = wo.z > 0.0;
   float alpha = principledAlpha(p);
   float brdf = principledBrdf(p);
   float bsdf = principledBsdf(p);
   bool transmits = p.specTrans > 0.0;
-  float etaPath = front ? p.ior : 1.0 / p.ior;
-  float invEtaPath = front ? 1.0 / p.ior : p.ior;
-  vec3 wh = normalize(wo + wi * (reflects ? 1.0 : etaPath));
-  wh = wh.z < 0.0 ? -wh : wh;
+  float invIor = 1.0 / p.ior;
+  float etaPath = front ? p.ior : invIor;
+  float invEtaPath = front ? invIor : p.ior;
+  float whScale = reflects ? 1.0 : etaPath;
+  vec3 wh = normalize(wo + wi * whScale);
+  wh = pick(wh.z < 0.0, -wh, wh);
   float woh = dot(wo, wh);
   float wih = dot(wi, wh);
   float cosThetaT, etaTI;
@@ -134,18 +145,13 @@ vec3 principledEval(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
   float cosO = abs(wi.z);
   vec3 value = vec3(0.0);
 
-  // Main specular reflection.
+  // Main specular reflection: outside, the tinted Schlick blend; inside, bsdf F.
   if (reflects && reflectCompatible && F > 0.0) {
-    vec3 fresnel;
-    if (front) {
-      float etaIT = woh >= 0.0 ? p.ior : 1.0 / p.ior;
-      float r0 = (etaIT - 1.0) / (etaIT + 1.0);
-      vec3 schlick = p.metallic * principledSchlick(p.baseColor, woh, p.ior)
-        + (1.0 - p.metallic) * p.specTint * principledSchlick(principledTint(p.baseColor) * (r0 * r0), woh, p.ior);
-      fresnel = vec3((1.0 - p.metallic) * (1.0 - p.specTint) * F) + schlick;
-    } else {
-      fresnel = vec3(bsdf * F);
-    }
+    float etaIT = woh >= 0.0 ? p.ior : invIor;
+    float r0 = (etaIT - 1.0) / (etaIT + 1.0);
+    vec3 schlick = p.metallic * principledSchlick(p.baseColor, woh, p.ior)
+      + (1.0 - p.metallic) * p.specTint * principledSchlick(principledTint(p.baseColor) * (r0 * r0), woh, p.ior);
+    vec3 fresnel = pick(front, vec3((1.0 - p.metallic) * (1.0 - p.specTint) * F) + schlick, vec3(bsdf * F));
     value += fresnel * (D * G / (4.0 * abs(wo.z)));
   }
   // Main specular transmission (radiance mode: scale = 1 / eta_path^2).
@@ -179,16 +185,19 @@ vec3 principledEval(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
 
   // The density of principledSampleDirection drawing wi (Mitsuba's pdf()).
   vec4 prob = principledLobeProbabilities(p, front, F);
-  float dwhDwo = transmits && refracts ? abs(etaPath * etaPath * wih / ((woh + etaPath * wih) * (woh + etaPath * wih))) : abs(1.0 / (4.0 * wih));
-  vec3 woUp = front ? wo : -wo;
+  float refractDwh = abs(etaPath * etaPath * wih / ((woh + etaPath * wih) * (woh + etaPath * wih)));
+  float dwhDwo = pick(transmits && refracts, refractDwh, abs(1.0 / (4.0 * wih)));
+  vec3 woUp = pick(front, wo, -wo);
   float visible = D * principledG1(woUp, wh, alpha) * abs(dot(woUp, wh)) / woUp.z;
+  float density = 0.0;
   if (reflects && reflectCompatible) {
-    pdf += prob.z * visible * dwhDwo;
-    if (p.clearcoat > 0.0) pdf += prob.y * wh.z * principledGtr1(wh, alphaCc) * dwhDwo;
+    density += prob.z * visible * dwhDwo;
+    if (p.clearcoat > 0.0) density += prob.y * wh.z * principledGtr1(wh, alphaCc) * dwhDwo;
   }
-  if (reflects) pdf += prob.x * INV_PI * wi.z;
-  if (transmits && refracts && refractCompatible) pdf += prob.w * visible * dwhDwo;
-  return value;
+  if (reflects) density += prob.x * INV_PI * wi.z;
+  if (transmits && refracts && refractCompatible) density += prob.w * visible * dwhDwo;
+  pdf = applies ? density : 0.0;
+  return pick(applies, value, vec3(0.0));
 }
 
 // Draws wi as Mitsuba's sample(): a visible normal m of the main lobe
@@ -197,41 +206,48 @@ vec3 principledEval(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
 // normal from (u.x, circle) (cos^2 theta from u.x, the azimuth from the
 // circle), the diffuse lobe projects the disk point up (cosine-weighted).
 // Directions on the wrong side of the surface or of their microfacet give
-// no sample. Never a delta (alpha >= 0.001).
+// no sample. Never a delta (alpha >= 0.001). Every lobe's direction is
+// computed and the chosen one picked (straight-line code: see pick()).
 vec3 principledSampleDirection(Bsdf b, vec3 wo, vec3 u, vec2 circle, out bool isDelta, out vec3 deltaWeight) {
   PrincipledParams p = principledParams(b);
   isDelta = false;
   deltaWeight = vec3(0.0);
-  if (!principledActive(p, wo)) return vec3(0.0);
+  bool applies = principledActive(p, wo);
   bool front = wo.z > 0.0;
-  vec3 woUp = front ? wo : -wo;
+  vec3 woUp = pick(front, wo, -wo);
   vec2 disk = sqrt(u.x) * circle;
   vec3 m = sampleGgxVisibleNormal(woUp, principledAlpha(p), disk);
   float woh = dot(wo, m);
   float cosThetaT, etaTI;
   float F = fresnelDielectric(woh, p.ior, cosThetaT, etaTI);
   vec4 prob = principledLobeProbabilities(p, front, F);
-  vec3 wi;
-  bool reflection = true;
-  if (u.z < prob.x) {
-    wi = vec3(disk, sqrt(max(0.0, 1.0 - u.x)));
-  } else if (u.z < prob.x + prob.y) {
-    float a2 = mix(0.1, 0.001, p.clearcoatGloss);
-    a2 *= a2;
-    float cos2 = (1.0 - pow(a2, 1.0 - u.x)) / (1.0 - a2);
-    vec3 mc = vec3(sqrt(max(0.0, 1.0 - cos2)) * circle, sqrt(max(0.0, cos2)));
-    wi = reflect(-wo, mc);
-    m = mc;
-  } else if (u.z < prob.x + prob.y + prob.w) {
-    wi = m * (woh * etaTI + cosThetaT) - wo * etaTI;
-    reflection = false;
-  } else {
-    wi = reflect(-wo, m);
-  }
-  bool sideOk = reflection ? wo.z * wi.z > 0.0 : wo.z * wi.z < 0.0;
+  float coatEnd = prob.x + prob.y;
+  float transmissionEnd = prob.x + prob.y + prob.w;
+  bool diffuse = u.z < prob.x;
+  bool belowCoatEnd = u.z < coatEnd;
+  bool belowTransmissionEnd = u.z < transmissionEnd;
+  bool coat = !diffuse && belowCoatEnd;
+  bool transmission = !belowCoatEnd && belowTransmissionEnd;
+
+  vec3 wiDiffuse = vec3(disk, sqrt(max(0.0, 1.0 - u.x)));
+  float a2 = mix(0.1, 0.001, p.clearcoatGloss);
+  a2 *= a2;
+  float cos2 = (1.0 - pow(a2, 1.0 - u.x)) / (1.0 - a2);
+  vec3 mc = vec3(sqrt(max(0.0, 1.0 - cos2)) * circle, sqrt(max(0.0, cos2)));
+  vec3 wiCoat = reflect(-wo, mc);
+  vec3 wiTransmission = m * (woh * etaTI + cosThetaT) - wo * etaTI;
+  vec3 wiReflection = reflect(-wo, m);
+  vec3 wi = pick(diffuse, wiDiffuse, pick(coat, wiCoat, pick(transmission, wiTransmission, wiReflection)));
+  m = coat ? mc : m;
+  bool reflection = !transmission;
+
+  float side = wo.z * wi.z;
+  bool sideOk = pick(reflection, side > 0.0, side < 0.0);
   // The diffuse direction has no microfacet to agree with.
-  bool compatible = u.z < prob.x || principledCompatible(m, wo, wi, reflection);
-  return sideOk && compatible ? wi : vec3(0.0);
+  bool microfacetOk = principledCompatible(m, wo, wi, reflection);
+  bool compatible = diffuse || microfacetOk;
+  bool valid = applies && sideOk && compatible;
+  return valid ? wi : vec3(0.0);
 }
 
 bool principledHasNonDeltaLobe(Bsdf b) { return true; }

@@ -47,8 +47,8 @@ vec3 standardSampleDirection(Bsdf b, vec3 wo, vec3 u, vec2 circle, out bool isDe
   // projected up it is cosine-distributed, warped it is a visible normal.
   float r2 = u.x;
   vec2 disk = sqrt(r2) * circle;
-  vec3 h = isDelta ? vec3(0.0, 0.0, 1.0) : sampleGgxVisibleNormal(wo, standardAlpha(m), disk);
-  vec3 wi = chooseSpecular ? reflect(-wo, h) : vec3(disk, sqrt(1.0 - r2));
+  vec3 h = pick(isDelta, vec3(0.0, 0.0, 1.0), sampleGgxVisibleNormal(wo, standardAlpha(m), disk));
+  vec3 wi = pick(chooseSpecular, reflect(-wo, h), vec3(disk, sqrt(1.0 - r2)));
   return wo.z > 0.0 ? wi : vec3(0.0);
 }
 

@@ -20,7 +20,7 @@ BsdfSample bsdfSample(Bsdf b, vec3 wo, vec3 u, vec2 circle) {
   s.wi = bsdfSampleDirection(b, wo, u, circle, s.isDelta, deltaWeight);
   vec3 f = bsdfEval(b, wo, s.wi, s.pdf);
   s.pdf = s.isDelta ? 0.0 : s.pdf;
-  s.weight = s.isDelta ? deltaWeight : f / s.pdf;
+  s.weight = pick(s.isDelta, deltaWeight, f / s.pdf);
   s.valid = s.wi != vec3(0.0) && (s.isDelta || (s.pdf > 0.0 && f != vec3(0.0)));
   return s;
 }

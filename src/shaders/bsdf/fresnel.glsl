@@ -8,14 +8,15 @@
 // eta_ti: Snell's sin_t = etaTI sin_i).
 float fresnelDielectric(float cosThetaI, float eta, out float cosThetaT, out float etaTI) {
   bool outside = cosThetaI >= 0.0;
-  float etaIT = outside ? eta : 1.0 / eta;
-  etaTI = outside ? 1.0 / eta : eta;
+  float invEta = 1.0 / eta;
+  float etaIT = outside ? eta : invEta;
+  etaTI = outside ? invEta : eta;
   float cosT2 = 1.0 - (1.0 - cosThetaI * cosThetaI) * (etaTI * etaTI);
   float cosI = abs(cosThetaI);
   float cosT = sqrt(max(cosT2, 0.0));
   float as = (cosI - etaIT * cosT) / (cosI + etaIT * cosT);
   float ap = (cosT - etaIT * cosI) / (cosT + etaIT * cosI);
   float r = 0.5 * (as * as + ap * ap);
-  cosThetaT = outside ? -cosT : cosT;
+  cosThetaT = pick(outside, -cosT, cosT);
   return cosI == 0.0 ? 1.0 : r;
 }

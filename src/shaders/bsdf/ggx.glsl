@@ -23,7 +23,7 @@ float ggxG1(vec3 v, float alpha) {
 vec3 sampleGgxVisibleNormal(vec3 wo, float alpha, vec2 disk) {
   vec3 vh = normalize(vec3(alpha * wo.x, alpha * wo.y, wo.z));
   float lenSq = vh.x * vh.x + vh.y * vh.y;
-  vec3 t1 = lenSq > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(lenSq) : vec3(1.0, 0.0, 0.0);
+  vec3 t1 = pick(lenSq > 0.0, vec3(-vh.y, vh.x, 0.0) * inversesqrt(lenSq), vec3(1.0, 0.0, 0.0));
   vec3 t2 = cross(vh, t1);
   float p1 = disk.x;
   float s = 0.5 * (1.0 + vh.z);

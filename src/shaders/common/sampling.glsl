@@ -3,12 +3,12 @@
 // the point: approximate sin/cos would make |point| drift past 1).
 vec2 sampleUniformDisk(vec2 u, out float radius) {
   vec2 o = 2.0 * u - 1.0;
-  radius = 0.0;
-  if (o.x == 0.0 && o.y == 0.0) return vec2(0.0);
-  float theta;
-  if (abs(o.x) > abs(o.y)) { radius = o.x; theta = (PI / 4.0) * (o.y / o.x); }
-  else { radius = o.y; theta = (PI / 2.0) - (PI / 4.0) * (o.x / o.y); }
-  return radius * vec2(cos(theta), sin(theta));
+  bool xMajor = abs(o.x) > abs(o.y);
+  float r = xMajor ? o.x : o.y;
+  float theta = pick(xMajor, (PI / 4.0) * (o.y / o.x), (PI / 2.0) - (PI / 4.0) * (o.x / o.y));
+  bool center = o.x == 0.0 && o.y == 0.0;  // theta is NaN there: not picked
+  radius = center ? 0.0 : r;
+  return pick(center, vec2(0.0), r * vec2(cos(theta), sin(theta)));
 }
 
 vec2 sampleUniformDisk(vec2 u) {
@@ -42,7 +42,6 @@ float uniformConePdf(float oneMinusCosMax) {
 
 // Power heuristic (beta = 2) in a form that cannot overflow.
 float powerHeuristic(float pdfA, float pdfB) {
-  if (pdfA <= 0.0) return 0.0;
   float ratio = pdfB / pdfA;
-  return 1.0 / (1.0 + ratio * ratio);
+  return pick(pdfA <= 0.0, 0.0, 1.0 / (1.0 + ratio * ratio));
 }

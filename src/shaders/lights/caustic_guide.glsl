@@ -56,7 +56,7 @@ vec4 guideCone(vec3 x, vec3 n, int guide) {
   float depth = dl * focal / (dl + focal);
   float s = clamp(GUIDE_MARGIN * image / (dx + depth), 3e-3, 0.5);
   float s2 = s * s;
-  return sensible ? vec4(toP / dx, s2 / (1.0 + sqrt(1.0 - s2))) : vec4(n, 1.0);
+  return pick(sensible, vec4(toP / dx, s2 / (1.0 + sqrt(1.0 - s2))), vec4(n, 1.0));
 }
 
 void buildGuides(vec3 x, vec3 n, Bsdf b) {
@@ -69,7 +69,7 @@ void buildGuides(vec3 x, vec3 n, Bsdf b) {
 
 // Density (solid angle) of drawing the world direction w from a cone.
 float conePdf(vec4 cone, vec3 w) {
-  return 1.0 - dot(w, cone.xyz) <= cone.w ? uniformConePdf(cone.w) : 0.0;
+  return pick(1.0 - dot(w, cone.xyz) <= cone.w, uniformConePdf(cone.w), 0.0);
 }
 
 // ... from the cones, each chosen with equal probability.
@@ -104,13 +104,14 @@ BsdfSample sampleGuided(Bsdf m, mat3 frame, vec3 wo, vec4 u, float choice) {
   bool guided = u.w < guideProbability;
 
   BsdfSample s;
-  s.wi = guided ? worldGuide * frame : wiBsdf;
+  s.wi = pick(guided, worldGuide * frame, wiBsdf);
   s.isDelta = isDelta && !guided;
   float bsdfPdf;
   vec3 f = bsdfEval(m, wo, s.wi, bsdfPdf);
-  s.pdf = s.isDelta ? 0.0 : guidedPdf(bsdfPdf, guided ? worldGuide : frame * wiBsdf);
+  vec3 worldWi = pick(guided, worldGuide, frame * wiBsdf);
+  s.pdf = pick(s.isDelta, 0.0, guidedPdf(bsdfPdf, worldWi));
   // A delta lobe is drawn only when the guides are not: (1 - p) as often.
-  s.weight = s.isDelta ? deltaWeight / (1.0 - guideProbability) : f / s.pdf;
+  s.weight = pick(s.isDelta, deltaWeight / (1.0 - guideProbability), f / s.pdf);
   s.valid = s.wi != vec3(0.0) && (s.isDelta || (s.pdf > 0.0 && f != vec3(0.0)));
   return s;
 }

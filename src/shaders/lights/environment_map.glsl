@@ -53,7 +53,7 @@ vec2 environmentUv(vec3 worldDir) {
   vec3 m = environmentToMap(worldDir);
   // atan(0, 0) is undefined in GLSL: straight up or down, any u will do.
   bool pole = m.x == 0.0 && m.z == 0.0;
-  float u = pole ? 0.5 : 0.5 + atan(-m.x, m.z) * (0.5 * INV_PI);
+  float u = pick(pole, 0.5, 0.5 + atan(-m.x, m.z) * (0.5 * INV_PI));
   return vec2(u, acos(clamp(m.y, -1.0, 1.0)) * INV_PI);
 }
 
@@ -64,10 +64,10 @@ vec3 environmentLookup(vec2 uv) {
   float tx = x - x0;
   int c0 = int(x0) % size.x;
   c0 += c0 < 0 ? size.x : 0;
-  int c1 = c0 + 1 == size.x ? 0 : c0 + 1;
+  int c1 = pick(c0 + 1 == size.x, 0, c0 + 1);
   float y = clamp(uv.y, 0.0, 1.0) * float(size.y - 1);
   int r0 = min(int(y), max(size.y - 2, 0));
-  float ty = size.y > 1 ? y - float(r0) : 0.0;
+  float ty = pick(size.y > 1, y - float(r0), 0.0);
   int r1 = min(r0 + 1, size.y - 1);
   vec3 top = mix(texelFetch(uEnvironmentMap, ivec2(c0, r0), 0).rgb, texelFetch(uEnvironmentMap, ivec2(c1, r0), 0).rgb, tx);
   vec3 bottom = mix(texelFetch(uEnvironmentMap, ivec2(c0, r1), 0).rgb, texelFetch(uEnvironmentMap, ivec2(c1, r1), 0).rgb, tx);
@@ -87,13 +87,13 @@ vec3 drawAlias(highp sampler2D table, int row, int n, float u) {
   float f = min(x - float(i), 1.0);
   vec4 entry = texelFetch(table, ivec2(i, row), 0);
   bool keep = f < entry.x;
-  float t = keep ? f / entry.x : (f - entry.x) / max(1.0 - entry.x, 1e-30);
-  return keep ? vec3(float(i), t, entry.z) : vec3(entry.y, min(t, 1.0), entry.w);
+  float t = pick(keep, f / entry.x, (f - entry.x) / max(1.0 - entry.x, 1e-30));
+  return pick(keep, vec3(float(i), t, entry.z), vec3(entry.y, min(t, 1.0), entry.w));
 }
 
 // Jacobian of (u, v) on the unit square -> solid angle: 2 pi^2 sin(theta).
 float environmentSolidAnglePdf(float pdfUv, float sinTheta) {
-  return sinTheta > 0.0 ? pdfUv / (2.0 * PI * PI * sinTheta) : 0.0;
+  return pick(sinTheta > 0.0, pdfUv / (2.0 * PI * PI * sinTheta), 0.0);
 }
 
 // A world direction drawn from the map's distribution; pdf = its solid-angle density.

@@ -26,7 +26,7 @@ LightSample sampleLight(vec3 x, vec3 u) {
 #if HAS_EMISSIVE_MESHES
   if (e.kind == EMITTER_MESH) {
     // What is left of u.z after the alias draw, uniform again, picks the triangle.
-    float rest = keep ? f / choice.aliasThreshold : (f - choice.aliasThreshold) / max(1.0 - choice.aliasThreshold, 1e-30);
+    float rest = pick(keep, f / choice.aliasThreshold, (f - choice.aliasThreshold) / max(1.0 - choice.aliasThreshold, 1e-30));
     s.direction = sampleMeshEmitter(x, e, vec3(u.xy, min(rest, 0.99999994)), s.pdf, s.distance, s.radiance);
     // The shadow ray stops short of the triangle it aims at.
     s.distance *= 0.9999;
@@ -34,22 +34,22 @@ LightSample sampleLight(vec3 x, vec3 u) {
   }
 #endif
   sampleLightKind(e, x, u.xy, s);
-  s.pdf = count > 0 ? e.pdf * s.pdf : 0.0;
+  s.pdf = pick(count > 0, e.pdf * s.pdf, 0.0);
   return s;
 }
 
 // Density of sampleLight drawing, from x, the direction towards `hit`
 // (`direction`, unit, from x).
 float lightPdf(vec3 x, vec3 direction, Hit hit) {
-  float pdf = hit.kind == HIT_SPHERE ? hit.emitterPdf * sphereEmitterPdf(x, hit.geometry) : 0.0;
+  float pdf = pick(hit.kind == HIT_SPHERE, hit.emitterPdf * sphereEmitterPdf(x, hit.geometry), 0.0);
 #if HAS_ENV_MAP
-  pdf = hit.kind == HIT_NONE ? environmentEmitterPdf() * environmentPdf(direction) : pdf;
+  pdf = pick(hit.kind == HIT_NONE, environmentEmitterPdf() * environmentPdf(direction), pdf);
 #endif
 #if HAS_EMISSIVE_MESHES
-  pdf = hit.kind == HIT_TRIANGLE ? meshEmitterPdf(direction, hit) : pdf;
+  pdf = pick(hit.kind == HIT_TRIANGLE, meshEmitterPdf(direction, hit), pdf);
 #endif
 #if HAS_PLANAR_LIGHTS
-  pdf = hit.kind == HIT_PLANAR ? planarLightPdf(x, direction, hit) : pdf;
+  pdf = pick(hit.kind == HIT_PLANAR, planarLightPdf(x, direction, hit), pdf);
 #endif
   return pdf;
 }

@@ -46,7 +46,7 @@ vec3 sampleMeshEmitter(vec3 x, Emitter e, vec3 u, out float pdf, out float dista
   distance = length(toLight);
   vec3 direction = toLight / distance;
   float cosLight = abs(dot(direction, surface.shadingNormal));
-  pdf = cosLight > 0.0 ? loadMesh(e.primitive).areaPdf / e.pdf * distance * distance / cosLight : 0.0;
+  pdf = pick(cosLight > 0.0, loadMesh(e.primitive).areaPdf / e.pdf * distance * distance / cosLight, 0.0);
 #if HAS_TEXTURED_EMISSION || HAS_SEE_THROUGH
   // The radiance at the point (a textured emission's texture), seen where
   // the surface is opaque: times its opacity (the format's o * Le, which a
@@ -64,7 +64,7 @@ vec3 sampleMeshEmitter(vec3 x, Emitter e, vec3 u, out float pdf, out float dista
 // triangle `hit` (its emitterPdf is the mesh's areaPdf), emitter choice included.
 float meshEmitterPdf(vec3 direction, Hit hit) {
   float cosLight = abs(dot(direction, hit.normal));  // the shading normal (see above)
-  return cosLight > 0.0 ? hit.emitterPdf * hit.t * hit.t / cosLight : 0.0;
+  return pick(cosLight > 0.0, hit.emitterPdf * hit.t * hit.t / cosLight, 0.0);
 }
 
 #endif

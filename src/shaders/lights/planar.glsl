@@ -12,7 +12,7 @@ LightSample planarAreaSample(PlanarLight l, vec3 x, vec3 p, float area, vec3 rad
   float d = length(toLight);
   s.direction = toLight / d;
   float cosLight = -dot(s.direction, normalize(cross(l.u, l.v)));
-  s.pdf = cosLight > 0.0 ? d * d / (cosLight * area) : 0.0;
+  s.pdf = pick(cosLight > 0.0, d * d / (cosLight * area), 0.0);
   s.radiance = radiance;
   // The shadow ray stops short of the light's own plane.
   s.distance = d * 0.9999;
@@ -24,7 +24,7 @@ LightSample planarAreaSample(PlanarLight l, vec3 x, vec3 p, float area, vec3 rad
 // hit.emitterPdf: the probability of picking the light.
 float planarAreaPdf(vec3 direction, Hit hit, float area) {
   float cosLight = abs(dot(direction, hit.normal));
-  return cosLight > 0.0 ? hit.emitterPdf * hit.t * hit.t / (cosLight * area) : 0.0;
+  return pick(cosLight > 0.0, hit.emitterPdf * hit.t * hit.t / (cosLight * area), 0.0);
 }
 
 #endif

@@ -116,9 +116,14 @@ float bvhBoxEntry(vec3 lo, vec3 hi, vec3 origin, vec3 invDir, float tMax) {
 // the plane across the ray, z along it scaled so that z = t on the ray.
 mat3 bvhShear(vec3 dir) {
   vec3 a = abs(dir);
-  int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
-  int kx = kz == 2 ? 0 : kz + 1;
-  int ky = kx == 2 ? 0 : kx + 1;
+  // Ternaries of names and constants only (selects; see pick() in common/math.glsl).
+  int kzFromX = a.x > a.z ? 0 : 2;
+  int kzFromY = a.y > a.z ? 1 : 2;
+  int kz = a.x > a.y ? kzFromX : kzFromY;
+  int kzNext = kz + 1;
+  int kx = kz == 2 ? 0 : kzNext;
+  int kxNext = kx + 1;
+  int ky = kx == 2 ? 0 : kxNext;
   vec3 ex = vec3(equal(ivec3(0, 1, 2), ivec3(kx)));
   vec3 ey = vec3(equal(ivec3(0, 1, 2), ivec3(ky)));
   vec3 ez = vec3(equal(ivec3(0, 1, 2), ivec3(kz)));
@@ -169,7 +174,11 @@ int bvhFindTexel(int root, vec3 origin, vec3 dir, mat3 shear, bool anyHit, inout
   int triangle = 0, triangleEnd = 0; // pending triangles: texels triangle, the next, .. < triangleEnd
   do {
     bool isTriangle = triangle < triangleEnd;
-    int texel = isTriangle ? triangle : 4 * max(node, 0);
+    // Every choice below is a ternary of names and constants: a select, not
+    // an if/else (SwiftShader's compile time doubles with each if/else in a
+    // loop: see pick() in common/math.glsl).
+    int nodeTexel = 4 * max(node, 0);
+    int texel = isTriangle ? triangle : nodeTexel;
     vec4 t0, t1, t2, t3;
     bvhTexels4(texel, t0, t1, t2, t3);
 
@@ -183,7 +192,10 @@ int bvhFindTexel(int root, vec3 origin, vec3 dir, mat3 shear, bool anyHit, inout
     best = found ? t : best;
     bestTexel = found ? texel : bestTexel;
     // The next triangle: 3 texels on, or the next row's first after a row's last (at column 2040).
-    triangle += isTriangle ? ((triangle & ((1 << BVH_TEXTURE_WIDTH_LOG2) - 1)) >= 3 * BVH_ROW_TRIANGLES - 3 ? 3 + (1 << BVH_TEXTURE_WIDTH_LOG2) - 3 * BVH_ROW_TRIANGLES : 3) : 0;
+    const int nextRowStep = 3 + (1 << BVH_TEXTURE_WIDTH_LOG2) - 3 * BVH_ROW_TRIANGLES;
+    bool rowEnd = (triangle & ((1 << BVH_TEXTURE_WIDTH_LOG2) - 1)) >= 3 * BVH_ROW_TRIANGLES - 3;
+    int triangleStep = rowEnd ? nextRowStep : 3;
+    triangle += isTriangle ? triangleStep : 0;
 
     // As a node: both children's boxes.
     float enter0 = bvhBoxEntry(t0.xyz, t1.xyz, origin, invDir, best);
@@ -193,12 +205,18 @@ int bvhFindTexel(int root, vec3 origin, vec3 dir, mat3 shear, bool anyHit, inout
     bool hit1 = !isTriangle && enter1 < BVH_NO_HIT;
     bool leaf0 = hit0 && end0 > 0, leaf1 = hit1 && end1 > 0;
     bool inner0 = hit0 && end0 == 0, inner1 = hit1 && end1 == 0;
-    triangle = leaf0 ? (leaf1 ? min(ref0, ref1) : ref0) : (leaf1 ? ref1 : triangle);
-    triangleEnd = leaf0 ? (leaf1 ? max(end0, end1) : end0) : (leaf1 ? end1 : triangleEnd);
+    int firstOfBoth = min(ref0, ref1), endOfBoth = max(end0, end1);
+    int firstWith0 = leaf1 ? firstOfBoth : ref0, endWith0 = leaf1 ? endOfBoth : end0;
+    int firstWithout0 = leaf1 ? ref1 : triangle, endWithout0 = leaf1 ? end1 : triangleEnd;
+    triangle = leaf0 ? firstWith0 : firstWithout0;
+    triangleEnd = leaf0 ? endWith0 : endWithout0;
     bool nearFirst = enter0 <= enter1;
     stack[min(sp, BVH_STACK_SIZE - 1)] = nearFirst ? ref1 : ref0; // kept only when both are nodes
     sp += inner0 && inner1 ? 1 : 0;
-    int next = inner0 && inner1 ? (nearFirst ? ref0 : ref1) : (inner0 ? ref0 : (inner1 ? ref1 : -1));
+    int nearer = nearFirst ? ref0 : ref1;
+    int onlyInner = inner1 ? ref1 : -1;
+    int oneInner = inner0 ? ref0 : onlyInner;
+    int next = inner0 && inner1 ? nearer : oneInner;
     node = isTriangle ? node : next;
 
     // Nothing to visit next: pop.
@@ -223,7 +241,8 @@ BvhHit bvhHitAt(int texel, float t, vec3 origin, mat3 shear) {
   bvhTexels4(max(texel, 0), v0, v1, v2, v3);
   float tScaled;
   vec3 e = bvhEdges(v0.xyz, v1.xyz, v2.xyz, origin, shear, tScaled);
-  return BvhHit(texel < 0 ? -1 : triangleIndex, t, e.yz / (e.x + e.y + e.z));
+  int index = texel < 0 ? -1 : triangleIndex;
+  return BvhHit(index, t, e.yz / (e.x + e.y + e.z));
 }
 
 bool bvhIntersect(int root, vec3 origin, vec3 dir, float tMax, bool anyHit, out BvhHit hit) {
@@ -247,7 +266,8 @@ bool bvhAnyHit(vec3 origin, vec3 dir, float tMax) {
 // v / |v|, and 0 for 0 (a zero vertex normal stays zero, as applyMatrix keeps it).
 vec3 bvhUnitOrZero(vec3 v) {
   float l2 = dot(v, v);
-  return l2 > 0.0 ? v * inversesqrt(l2) : vec3(0.0);
+  vec3 unit = v * inversesqrt(l2);
+  return l2 > 0.0 ? unit : vec3(0.0);
 }
 #endif
 
@@ -262,7 +282,8 @@ vec3 bvhUnitOrZero(vec3 v) {
 // its coordinates are degenerate (a normal map then keeps the normal).
 void bvhPositionDerivatives(vec3 e1, vec3 e2, vec2 d1, vec2 d2, out vec3 dpdu, out vec3 dpdv) {
   float det = d1.x * d2.y - d1.y * d2.x;
-  float inv = abs(det) > 1e-20 ? 1.0 / det : 0.0;
+  float reciprocal = 1.0 / det;
+  float inv = abs(det) > 1e-20 ? reciprocal : 0.0;
   dpdu = (d2.y * e1 - d1.y * e2) * inv;
   dpdv = (d1.x * e2 - d2.x * e1) * inv;
 }
@@ -312,7 +333,8 @@ BvhSurface bvhSurface(BvhHit hit, mat3 normalMatrix) {
   s.dpdu = vec3(0.0);
   s.dpdv = vec3(0.0);
   if (textured) {
-    int k = attributes >= 0 ? attributes + 3 : -2 - attributes;
+    int smoothUvs = attributes + 3, flatUvs = -2 - attributes;
+    int k = attributes >= 0 ? smoothUvs : flatUvs;
     vec4 uv01 = bvhTexel(uBvh, k);
     vec4 uv2Texel = bvhTexel(uBvh, k + 1);
     vec2 uv2 = uv2Texel.xy;
@@ -322,7 +344,8 @@ BvhSurface bvhSurface(BvhHit hit, mat3 normalMatrix) {
 #endif
 #if HAS_VERTEX_COLORS
     colored = colored || (attributes <= -2 && uv2Texel.z > 0.0);
-    colorTexel = attributes >= 0 ? colorTexel : k + 2;
+    int flatColors = k + 2;
+    colorTexel = attributes >= 0 ? colorTexel : flatColors;
 #endif
   }
 #if HAS_VERTEX_COLORS

@@ -51,10 +51,10 @@ float sphereHitT(vec3 origin, vec3 direction, vec4 sphere) {
   float r2 = sphere.w * sphere.w;
   float h = r2 - dot(closest, closest);
   float s = sqrt(max(h, 0.0));
-  float q = -b - (b >= 0.0 ? s : -s);
+  float q = -b - pick(b >= 0.0, s, -s);
   float c = dot(oc, oc) - r2;
   float t1 = c / q;
-  float t = c > 0.0 ? t1 : max(q, t1);
+  float t = pick(c > 0.0, t1, max(q, t1));
   t = t > 0.0 ? t : INFINITY;
   return h >= 0.0 ? t : INFINITY;
 }
@@ -95,13 +95,13 @@ vec2 planarCandidates(vec3 origin, vec3 direction, float tMax) {
   vec2 groups = vec2(1e4, -1.0);
   for (int g = 0; g < (count + PLANAR_GROUP_SIZE - 1) / PLANAR_GROUP_SIZE; g++) {
     bool near = segmentClearance(origin, direction, tMax, planarGroupBound(g)) < 0.0;
-    groups = near ? vec2(min(groups.x, float(g)), float(g)) : groups;
+    groups = pick(near, vec2(min(groups.x, float(g)), float(g)), groups);
   }
   vec2 range = vec2(1e4, -1.0);
   int last = min(count, (int(groups.y) + 1) * PLANAR_GROUP_SIZE);
   for (int i = int(groups.x) * PLANAR_GROUP_SIZE; i < last; i++) {
     bool near = segmentClearance(origin, direction, tMax, planarLightBound(i)) < 0.0;
-    range = near ? vec2(min(range.x, float(i)), float(i)) : range;
+    range = pick(near, vec2(min(range.x, float(i)), float(i)), range);
   }
   return range;
 }
@@ -151,7 +151,8 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   bool isGround = tGround < tSphere;
   Hit hit;
   hit.t = min(tSphere, tGround);
-  hit.kind = hit.t == INFINITY ? HIT_NONE : isGround ? HIT_GROUND : HIT_SPHERE;
+  int surfaceKind = isGround ? HIT_GROUND : HIT_SPHERE;
+  hit.kind = hit.t == INFINITY ? HIT_NONE : surfaceKind;
 
   // Both surfaces are derived and the right one selected (see sphereHitT).
   SphereRecord record = loadSphere(sphere);
@@ -162,9 +163,9 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   vec3 groundPosition = vec3(p.x, groundHeight(), p.z);            // exactly on the plane
   hit.normal = isGround ? vec3(0.0, 1.0, 0.0) : sphereNormal;
   hit.position = isGround ? groundPosition : spherePosition;
-  hit.scale = isGround ? abs(groundHeight()) : geometry.w;
+  hit.scale = pick(isGround, abs(groundHeight()), geometry.w);
   hit.geometry = geometry;
-  hit.material = isGround ? groundMaterial() : record.material;
+  hit.material = pick(isGround, groundMaterial(), record.material);
   hit.emitterPdf = isGround ? 0.0 : record.emitterPdf;
   hit.geometricNormal = hit.normal;
   hit.uv = isGround ? groundPosition.xz : vec2(0.0);
@@ -237,7 +238,7 @@ bool occluded(vec3 origin, vec3 direction, float tMax, int skipSphere) {
 
 // Origin for a ray leaving `hit` into the side of `side` (a direction).
 vec3 spawnRayOrigin(Hit hit, vec3 side) {
-  vec3 n = dot(side, hit.geometricNormal) >= 0.0 ? hit.geometricNormal : -hit.geometricNormal;
+  vec3 n = pick(dot(side, hit.geometricNormal) >= 0.0, hit.geometricNormal, -hit.geometricNormal);
   float offset = 4e-6 * (maxComponent(abs(hit.position)) + hit.scale) + 1e-6;
   return hit.position + n * offset;
 }

@@ -73,9 +73,13 @@ float textureScalar(int t, vec2 uv) {
   TextureRecord r = loadTexture(t);
   vec4 v = textureTexels(r, uv);
   int channel = int(r.size.z);
-  float x = channel == 0 ? v.x : channel == 1 ? v.y : channel == 2 ? v.z : v.w;
+  // Selects of names only (see pick() in common/math.glsl).
+  float zw = channel == 2 ? v.z : v.w;
+  float yzw = channel == 1 ? v.y : zw;
+  float x = channel == 0 ? v.x : yzw;
   float cutoff = r.size.w;
-  return cutoff < 0.0 ? x : x >= cutoff ? 1.0 : 0.0;
+  float masked = x >= cutoff ? 1.0 : 0.0;
+  return cutoff < 0.0 ? x : masked;
 }
 
 // A normal map's normal in its tangent frame: normalize((2 rgb - 1) * (s, s, 1)).
@@ -83,7 +87,7 @@ vec3 textureNormal(int t, vec2 uv) {
   TextureRecord r = loadTexture(t);
   vec3 n = (2.0 * textureTexels(r, uv).rgb - 1.0) * vec3(r.uRow.w, r.uRow.w, 1.0);
   float len = length(n);
-  return len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
+  return pick(len > 0.0, n / len, vec3(0.0, 0.0, 1.0));
 }
 
 #endif
