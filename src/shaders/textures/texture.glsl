@@ -87,7 +87,8 @@ vec3 textureNormal(int t, vec2 uv) {
   TextureRecord r = loadTexture(t);
   vec3 n = (2.0 * textureTexels(r, uv).rgb - 1.0) * vec3(r.uRow.w, r.uRow.w, 1.0);
   float len = length(n);
-  return pick(len > 0.0, n / len, vec3(0.0, 0.0, 1.0));
+  vec3 unit = n / len;  // a select of names (pick() is not in the texture kernels' chunks)
+  return len > 0.0 ? unit : vec3(0.0, 0.0, 1.0);
 }
 
 #endif
