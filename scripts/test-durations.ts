@@ -16,6 +16,8 @@ const reportPath = resolve(root, process.argv[2] ?? 'test-output/vitest-report.j
 const report = JSON.parse(readFileSync(reportPath, 'utf8')) as Report;
 const durations: Record<string, number> = {};
 const results = [...report.testResults].sort((a, b) => b.endTime - b.startTime - (a.endTime - a.startTime));
-for (const file of results) durations[relative(root, file.name)] = Math.round((file.endTime - file.startTime) / 100) / 10;
+// Paths from the project root, whichever checkout the report came from (CI runs a fresh clone).
+const fromRoot = (file: string) => /(?:^|\/)((?:test|src)\/.*)$/.exec(relative(root, file))?.[1] ?? relative(root, file);
+for (const file of results) durations[fromRoot(file.name)] = Math.round((file.endTime - file.startTime) / 100) / 10;
 writeFileSync(resolve(root, 'test/durations.json'), `${JSON.stringify(durations, null, 2)}\n`);
 console.log(`test/durations.json: ${results.length} files, ${Object.values(durations).reduce((a, b) => a + b, 0).toFixed(0)} s in all`);
