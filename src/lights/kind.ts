@@ -19,7 +19,8 @@
  * `inside` the GLSL test of a point on their plane) also define
  *   float <type>LightPdf(vec3 x, vec3 direction, Hit hit)
  *       the density, in solid angle at x, of <type>LightSample drawing the
- *       direction towards `hit` (a hit on the shape), emitter choice included.
+ *       direction towards `hit` (a hit on the shape), once the light is
+ *       picked (lights/lights.glsl multiplies in the choice).
  */
 import type * as z from 'zod';
 import type { FieldType, RecordValues } from '../render/layout/records';
@@ -39,6 +40,23 @@ export interface PlanarShape {
   v: Vec3;
   /** Its area. */
   area: number;
+}
+
+/**
+ * Where a light can send light, and about how much: the choice of emitter
+ * at a shading point (src/render/lightChoice.ts) weighs each emitter by the
+ * irradiance this predicts and gives it probability 0 only in a region
+ * where it says none can arrive, so it must never say so wrongly.
+ */
+export interface LightReach {
+  /** A sphere holding what emits (radius 0: a point); null: at infinity, the same from every point. */
+  bound: { center: Vec3; radius: number } | null;
+  /** Luminance of the irradiance it gives a point facing it at distance 1 (at infinity: its irradiance). */
+  strength: number;
+  /** A one-sided planar emitter's normal: it lights only points in front of the plane through bound.center. */
+  front?: Vec3;
+  /** A spot's cone: it lights only points within acos(cosCutoff) of `axis` from bound.center. */
+  cone?: { axis: Vec3; cosCutoff: number };
 }
 
 /** What a light's power and export may need of the rest of the scene. */
@@ -88,6 +106,8 @@ export interface LightKind<L extends LightBase = LightBase> {
   readonly sphere?: (l: L) => { center: Vec3; radius: number };
   /** Emitted power (luminance-weighted, as for the other emitters): the emitter choice is in proportion to it. */
   readonly power: (l: L, bounds: SceneBounds) => number;
+  /** Where and how strongly it lights (LightReach), for the choice of emitter at a shading point. */
+  readonly reach: (l: L) => LightReach;
   /** Where it is and how far it reaches (for the scene's extent); null: at infinity. */
   readonly extent: (l: L) => { center: Vec3; radius: number } | null;
   /** Mitsuba's shape or emitter for it. */

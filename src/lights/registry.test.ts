@@ -13,6 +13,7 @@ import { unpackMaterial } from '../materials/registry';
 import { parseScene } from '../scene/schema';
 import { EMITTER_KINDS, lightDispatchGlsl, lightPower, unpackEmitter } from './registry';
 import { readRecord as read } from '../../test/support/records';
+import { choiceEntry } from '../../test/support/lightChoice';
 
 const lightsJson = JSON.parse(readFileSync(new URL('../../test/fixtures/scenes/lights.json', import.meta.url), 'utf8'));
 
@@ -30,14 +31,16 @@ describe('light registry: packing', () => {
     expect(emitters.map((e) => e.type)).toEqual(['rectangle', 'disk', 'point', 'spot', 'directional']);
     expect(emitters.map((e) => e.kind)).toEqual(['rectangle', 'disk', 'point', 'spot', 'directional'].map((t) => EMITTER_KINDS[t]));
     expect(emitters.map((e) => e.primitive)).toEqual([0, 1, -1, -1, -1]);
-    const total = emitters.reduce((sum, e) => sum + (e.pdf as number), 0);
+    // The global table (points outside the grid of render/lightChoice.ts).
+    const pdfs = emitters.map((_, i) => choiceEntry(packed, i).pdf);
+    const total = pdfs.reduce((sum, p) => sum + p, 0);
     expect(total).toBeCloseTo(1, 6);
     // Each pdf is half its power share plus half of 1/5: the shares' ratio is
     // the powers' (the rectangle's against the point's, neither depends on the bounds).
     const bounds = { radius: 1 };
     const ratio = lightPower(scene.lights[0], bounds) / lightPower(scene.lights[2], bounds);
-    expect(((emitters[0].pdf as number) - 0.1) / ((emitters[2].pdf as number) - 0.1)).toBeCloseTo(ratio, 4);
-    emitters.forEach((e) => expect(e.pdf as number).toBeGreaterThan(0.1));
+    expect((pdfs[0] - 0.1) / (pdfs[2] - 0.1)).toBeCloseTo(ratio, 4);
+    pdfs.forEach((p) => expect(p).toBeGreaterThan(0.1));
     expect(emitters[2]).toMatchObject({ radiance: [3, 3, 3], position: [0, expect.closeTo(1.4, 6), expect.closeTo(1.6, 6)] });
     const spot = emitters[3];
     expect(spot.cosCutoff).toBeCloseTo(Math.cos((25 * Math.PI) / 180), 6);
@@ -46,11 +49,11 @@ describe('light registry: packing', () => {
     expect(Math.hypot(...(emitters[4].direction as number[]))).toBeCloseTo(1, 6);
   });
 
-  it('writes the rectangle and disk into the planar-light table with emitter-only materials and their choice probability', () => {
+  it('writes the rectangle and disk into the planar-light table with emitter-only materials and their emitter slots', () => {
     for (const i of [0, 1]) {
       const planar = read(packed.data, SECTIONS.planarLights, PLANAR_LIGHT, i);
       expect(planar.kind).toBe(EMITTER_KINDS[scene.lights[i].type]);
-      expect(planar.emitterPdf).toBe(emitterAt(packed.data, i).pdf);
+      expect(planar.emitter).toBe(i);
       const base = (SECTIONS.materials + (planar.material as number) * MATERIAL.texels) * 4;
       const material = unpackMaterial(packed.data.subarray(base, base + MATERIAL.texels * 4));
       const l = scene.lights[i] as { color: number[]; intensity: number };

@@ -84,6 +84,7 @@ export function lightJson(l: Light, version: number): Record<string, unknown> {
 export const lightMitsuba = (l: Light): XmlNode => lightKindOf(l).mitsuba(l);
 export const lightPower = (l: Light, bounds: SceneBounds): number => lightKindOf(l).power(l, bounds);
 export const lightExtent = (l: Light) => lightKindOf(l).extent(l);
+export const lightReach = (l: Light) => lightKindOf(l).reach(l);
 export const lightSphere = (l: Light) => lightKindOf(l).sphere?.(l) ?? null;
 export const lightArea = (l: Light): PlanarShape | null => lightKindOf(l).area?.(l) ?? null;
 export const lightEmitted = (l: Light): Vec3 => lightKindOf(l).emitted(l);
@@ -113,12 +114,12 @@ export const EMITTER_KINDS: Readonly<Record<string, number>> = {
 
 /**
  * What every emitter record has: the radiance (or intensity, or
- * irradiance) it emits, the probability of picking it, its tag, and for
+ * irradiance) it emits, its tag, and for
  * spheres the sphere, for meshes the mesh and its emissive-triangle slots
  * (lights/mesh_emitter.glsl), for area lights the planar-light slot.
  */
 const HEADER_FIELDS: [string, 'vec3' | 'float' | 'int'][] = [
-  ['radiance', 'vec3'], ['pdf', 'float'], ['kind', 'int'], ['primitive', 'int'], ['first', 'int'], ['count', 'int'],
+  ['radiance', 'vec3'], ['kind', 'int'], ['primitive', 'int'], ['first', 'int'], ['count', 'int'],
 ];
 const HEADER_LAYOUT = defineRecord('EmitterHeader', HEADER_FIELDS);
 const LAYOUTS = new Map<string, RecordLayout>(LIGHT_KINDS.map((k) => [k.type, defineRecord(`${capitalized(k.type)}Emitter`, [...HEADER_FIELDS, ...k.fields])]));
@@ -128,20 +129,20 @@ export const EMITTER_TEXELS = Math.max(...[...LAYOUTS.values()].map((l) => l.tex
 export const emitterLayout = (type = DEFAULT_KIND.type): RecordLayout => ({ ...LAYOUTS.get(type)!, name: 'Emitter', texels: EMITTER_TEXELS });
 
 /** An emitter record: its header, and `params` (the fields of light kind `type`, when given). */
-export function packEmitter(header: { radiance?: Vec3; pdf: number; kind: number; primitive?: number; first?: number; count?: number }, type?: string, params: RecordValues = {}): Float32Array {
+export function packEmitter(header: { radiance?: Vec3; kind: number; primitive?: number; first?: number; count?: number }, type?: string, params: RecordValues = {}): Float32Array {
   const layout = type ? LAYOUTS.get(type)! : HEADER_LAYOUT;
   const out = new Float32Array(EMITTER_TEXELS * 4);
   out.set(packRecord(layout, { ...header, ...params } as RecordValues));
   return out;
 }
 /** The record of a light of the `lights` list (`primitive`: its sphere or planar-light slot). */
-export function packLightEmitter(l: Light, pdf: number, primitive: number): Float32Array {
+export function packLightEmitter(l: Light, primitive: number): Float32Array {
   const kind = lightKindOf(l);
-  return packEmitter({ radiance: lightEmitted(l), pdf, kind: EMITTER_KINDS[l.type], primitive }, l.type, kind.pack(l));
+  return packEmitter({ radiance: lightEmitted(l), kind: EMITTER_KINDS[l.type], primitive }, l.type, kind.pack(l));
 }
 /** A record read back into its header and (for a light kind) its fields, for tests and tools. */
 export function unpackEmitter(record: Float32Array): Record<string, number | number[] | string> {
-  const tag = record[4];
+  const tag = record[3];
   const type = Object.keys(EMITTER_KINDS).find((t) => EMITTER_KINDS[t] === tag) ?? String(tag);
   const layout = LAYOUTS.get(type) ?? HEADER_LAYOUT;
   const out: Record<string, number | number[] | string> = { type };
@@ -155,15 +156,15 @@ export function unpackEmitter(record: Float32Array): Record<string, number | num
 /**
  * An area light's shape in the planar-light table, which the closest-hit
  * and shadow queries loop over (scene/intersect.glsl): centre, half-axes,
- * its emitter tag, its emitter-only material and the probability that
- * light sampling picks it (0: it emits nothing).
+ * its emitter tag, its emitter-only material and its slot in the emitter
+ * table (-1: it emits nothing).
  */
 export const PLANAR_LIGHT = defineRecord('PlanarLight', [
-  ['center', 'vec3'], ['kind', 'int'], ['u', 'vec3'], ['material', 'int'], ['v', 'vec3'], ['emitterPdf', 'float'],
+  ['center', 'vec3'], ['kind', 'int'], ['u', 'vec3'], ['material', 'int'], ['v', 'vec3'], ['emitter', 'int'],
 ]);
-export function packPlanarLight(l: Light, material: number, emitterPdf: number): Float32Array {
+export function packPlanarLight(l: Light, material: number, emitter: number): Float32Array {
   const shape = lightArea(l)!;
-  return packRecord(PLANAR_LIGHT, { center: shape.center, u: shape.u, v: shape.v, kind: EMITTER_KINDS[l.type], material, emitterPdf });
+  return packRecord(PLANAR_LIGHT, { center: shape.center, u: shape.u, v: shape.v, kind: EMITTER_KINDS[l.type], material, emitter });
 }
 
 /**
@@ -263,6 +264,6 @@ export function lightDispatchGlsl(): string {
   return [
     '// Generated from src/lights/registry.ts: do not edit.',
     `// The sample of emitter e's kind, when it is one of the light kinds besides the sphere.\nvoid sampleLightKind(Emitter e, vec3 x, vec2 u, inout LightSample s) {\n${samples.join('\n')}\n}`,
-    `// Density of light sampling drawing \`direction\` from x towards the planar light \`hit\`, emitter choice included.\nfloat planarLightPdf(vec3 x, vec3 direction, Hit hit) {\n  int kind = int(hit.geometry.y);\n${pdfs.join('\n')}\n  return 0.0;\n}`,
+    `// Density of light sampling drawing \`direction\` from x towards the planar light \`hit\`, once it picked that light.\nfloat planarLightPdf(vec3 x, vec3 direction, Hit hit) {\n  int kind = int(hit.geometry.y);\n${pdfs.join('\n')}\n  return 0.0;\n}`,
   ].join('\n');
 }

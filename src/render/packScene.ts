@@ -5,23 +5,26 @@
  * Each sphere light becomes a sphere with an emitter-only material; every
  * sphere whose material emits is also an emitter. Lights of the planar
  * kinds go into the planar-light table (with emitter-only materials), the
- * delta kinds into the emitter table only (src/lights/registry.ts). Light sampling picks an emitter in proportion
- * to its power through an alias table.
+ * delta kinds into the emitter table only (src/lights/registry.ts). Light
+ * sampling picks an emitter through the alias tables of lightChoice.ts: by
+ * where the shading point is, or, outside their grid, by power.
  */
 import { materialFeatures, materialOpacityFactor, materialSeeThrough, materialTextures, textureSlotFeatures, packEmitterOnly, packMaterial, type MaterialTexture } from '../materials/registry';
 import { CHANNELS, type TextureInput } from '../scene/texture/texture';
 import { ATLAS_FORMATS, type AtlasFormat, type Placement } from './textures/atlas';
 import {
-  type Light, lightArea, lightKindOf, lightEmitted, lightExtent, lightFeatures, lightPower, lightSphere, packEmitter, packLightEmitter, packPlanarLight, planarBound,
+  type Light, lightArea, lightKindOf, lightEmitted, lightExtent, lightFeatures, lightPower, lightReach, lightSphere, packEmitter, packLightEmitter, packPlanarLight, planarBound,
 } from '../lights/registry';
+import type { LightReach } from '../lights/kind';
+import { sphereReach } from '../lights/math';
+import { buildLightChoice, type Box, type LightChoice } from './lightChoice';
 import type { Material, Vec3 } from '../scene/types';
 import { asRenderScene, type RenderScene as Scene } from '../scene/fileMaterials';
 import type { Scene as SceneModel } from '../scene/types';
-import { buildAliasTable } from './aliasTable';
 import type { MeshGroups } from './bvh/groups';
 import { selectCausticGuides, type GuideSphere } from './causticGuides';
 import {
-  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MAX_TEXTURES, MESH, PLANAR_GROUP_SIZE, PLANAR_LIGHT, SECTIONS, SPHERE, TEXTURE,
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_KINDS, GUIDE_FIELDS, GUIDE_VEC4S, HEADER, MATERIAL, MAX_TEXTURES, MESH, PLANAR_GROUP_SIZE, PLANAR_LIGHT, SECTIONS, SPHERE, TEXTURE,
 } from './layout/scene';
 import { planarGroupBounds, planarGroupOrder } from './planarGroups';
 import { packRecord } from './layout/records';
@@ -73,8 +76,8 @@ export const BASE_FEATURES: SceneFeatures = {
 export interface PackOptions {
   /** The integral of the environment map's luminance over the sphere (its distribution's), when the scene has one. */
   environmentIntegral?: number;
-  /** World-space surface area and triangle count of each of scene.meshes (decoded and transformed). */
-  meshes?: readonly { area: number; triangles: number }[];
+  /** World-space surface area, triangle count and bounding box of each of scene.meshes (decoded and transformed). */
+  meshes?: readonly { area: number; triangles: number; box?: Box }[];
   /** How the meshes are stored (src/render/bvh/groups.ts), as the BVH was built: instances need their shader code. */
   groups?: MeshGroups;
   /** Textured emissions: each emissive mesh's area-weighted mean of its texture's luminance (records.ts areaMean), by mesh index. */
@@ -100,6 +103,8 @@ export interface PackedScene {
   meshMaterials: number[];
   /** The emissive meshes' triangle slots, in slot order. */
   meshEmitters: MeshEmitterSlots[];
+  /** The emitter-choice tables (the texture lights/lights.glsl reads as uLightChoice). */
+  lightChoice: LightChoice;
 }
 
 interface SceneSphere extends GuideSphere {
@@ -158,43 +163,49 @@ export function packScene(sceneIn: Scene | SceneModel, options: PackOptions = {}
     ...otherLights.map((l) => l.power),
   ];
   const hasDeltaLight = otherLights.some(({ light }) => lightKindOf(light).delta);
-  const alias = buildAliasTable(emitterChoiceWeights(powers, hasDeltaLight));
-  const emitterPdf = new Map(emitters.map((e, i) => [e.index, alias.pdf[i]]));
+  // Emitter slots: emissive spheres, the map, emissive meshes, the other lights.
+  const environmentSlot = environmentPower > 0 ? emitters.length : -1;
+  const firstMesh = emitters.length + (environmentPower > 0 ? 1 : 0);
+  const firstLight = firstMesh + meshEmitters.length;
+  const reaches: LightReach[] = [
+    ...emitters.map(({ sphere }) => sphereReach(sphere.center, sphere.radius, sphere.radiance)),
+    ...(environmentPower > 0 ? [environmentReach(scene, options.environmentIntegral ?? 0)] : []),
+    ...meshEmitters.map((m) => meshReach(m, options.meshes?.[m.mesh]?.box)),
+    ...otherLights.map(({ light }) => lightReach(light)),
+  ];
+  const lightChoice = buildLightChoice(reaches, emitterChoiceWeights(powers, hasDeltaLight), choiceBox(scene, spheres, options.meshes ?? []));
+  const sphereEmitter = new Map(emitters.map((e, i) => [e.index, i]));
 
   spheres.forEach((sphere, i) => {
     const material = addMaterial(sphere.material === 'emitterOnly' ? packEmitterOnly(sphere.radiance) : packMaterial(sphere.material, false));
     data.set([...sphere.center, sphere.radius], (SECTIONS.sphereGeometry + i) * 4);
-    data.set(packRecord(SPHERE, { material, emitterPdf: emitterPdf.get(i) ?? 0 }), (SECTIONS.spheres + i * SPHERE.texels) * 4);
+    data.set(packRecord(SPHERE, { material, emitter: sphereEmitter.get(i) ?? -1 }), (SECTIONS.spheres + i * SPHERE.texels) * 4);
   });
   const setEmitter = (slot: number, record: Float32Array) => data.set(record, (SECTIONS.emitters + slot * EMITTER.texels) * 4);
   emitters.forEach(({ index, sphere }, i) => {
-    setEmitter(i, packEmitter({ radiance: sphere.radiance, pdf: alias.pdf[i], kind: EMITTER_KINDS.sphere, primitive: index }, 'sphere', { center: sphere.center, radius: sphere.radius }));
+    setEmitter(i, packEmitter({ radiance: sphere.radiance, kind: EMITTER_KINDS.sphere, primitive: index }, 'sphere', { center: sphere.center, radius: sphere.radius }));
   });
-  if (environmentPower > 0) setEmitter(emitters.length, packEmitter({ pdf: alias.pdf[emitters.length], kind: EMITTER_KINDS.environment, primitive: -1 }));
-  const firstMesh = emitters.length + (environmentPower > 0 ? 1 : 0);
+  if (environmentPower > 0) setEmitter(environmentSlot, packEmitter({ kind: EMITTER_KINDS.environment, primitive: -1 }));
   meshEmitters.forEach((m, i) => {
-    const pdf = alias.pdf[firstMesh + i];
-    setEmitter(firstMesh + i, packEmitter({ radiance: m.radiance, pdf, kind: EMITTER_KINDS.mesh, primitive: m.mesh, first: m.first, count: m.count }));
+    setEmitter(firstMesh + i, packEmitter({ radiance: m.radiance, kind: EMITTER_KINDS.mesh, primitive: m.mesh, first: m.first, count: m.count }));
   });
-  const firstLight = firstMesh + meshEmitters.length;
-  const lightPdfs = new Map<Light, number>(otherLights.map(({ light }, i) => [light, alias.pdf[firstLight + i]]));
-  otherLights.forEach(({ light }, i) => setEmitter(firstLight + i, packLightEmitter(light, alias.pdf[firstLight + i], planarLights.indexOf(light))));
+  const lightSlots = new Map<Light, number>(otherLights.map(({ light }, i) => [light, firstLight + i]));
+  otherLights.forEach(({ light }, i) => setEmitter(firstLight + i, packLightEmitter(light, planarLights.indexOf(light))));
   planarLights.forEach((light, i) => {
     const material = addMaterial(packEmitterOnly(lightEmitted(light)));
-    data.set(packPlanarLight(light, material, lightPdfs.get(light) ?? 0), (SECTIONS.planarLights + i * PLANAR_LIGHT.texels) * 4);
+    data.set(packPlanarLight(light, material, lightSlots.get(light) ?? -1), (SECTIONS.planarLights + i * PLANAR_LIGHT.texels) * 4);
     data.set(planarBounds[i], (SECTIONS.planarBounds + i) * 4);
   });
   planarGroupBounds(planarBounds, PLANAR_GROUP_SIZE).forEach((sphere, g) => data.set(sphere, (SECTIONS.planarGroups + g) * 4));
-  powers.forEach((_, i) => {
-    const choice = packRecord(EMITTER_CHOICE, { aliasThreshold: alias.threshold[i], alias: alias.alias[i] });
-    data.set(choice, (SECTIONS.emitterChoices + i * EMITTER_CHOICE.texels) * 4);
-  });
   const groundMaterial = scene.ground ? addMaterial(packMaterial(scene.ground.material, false, textureIndex)) : 0;
   const meshMaterials = scene.meshes.map((mesh) => addMaterial(packMaterial(mesh.material, true, textureIndex)));
   materials.forEach((record, i) => data.set(record, (SECTIONS.materials + i * MATERIAL.texels) * 4));
 
-  const areaPdfs = new Map(meshEmitters.map((m, i) => [m.mesh, alias.pdf[firstMesh + i] / m.area]));
-  meshMaterials.forEach((materialBase, i) => data.set(packRecord(MESH, { areaPdf: areaPdfs.get(i) ?? 0, materialBase }), (SECTIONS.meshes + i * MESH.texels) * 4));
+  const meshSlots = new Map(meshEmitters.map((m, i) => [m.mesh, { emitter: firstMesh + i, inverseArea: 1 / m.area }]));
+  meshMaterials.forEach((materialBase, i) => {
+    const slot = meshSlots.get(i) ?? { emitter: -1, inverseArea: 0 };
+    data.set(packRecord(MESH, { ...slot, materialBase }), (SECTIONS.meshes + i * MESH.texels) * 4);
+  });
 
   const guides = selectCausticGuides(spheres);
   const environment = scene.environment;
@@ -207,7 +218,11 @@ export function packScene(sceneIn: Scene | SceneModel, options: PackOptions = {}
     groundMaterial,
     planarLightCount: planarLights.length,
     environment: environment && 'color' in environment ? scale(environment.color, environment.intensity) : [0, 0, 0],
-    environmentPdf: environmentPower > 0 ? alias.pdf[emitters.length] : 0,
+    environmentEmitter: environmentSlot,
+    lightChoiceOrigin: lightChoice.origin,
+    lightChoiceScale: lightChoice.inverseCellSize,
+    lightChoiceCells: lightChoice.cells,
+    lightChoiceGlobal: lightChoice.tables - 1,
   });
   block.set(header, 0);
   // The guides' geometry itself, not indices: the shader reads it with
@@ -234,7 +249,53 @@ export function packScene(sceneIn: Scene | SceneModel, options: PackOptions = {}
     textureSlots: textureSlotFeatures(sceneMaterials),
     vertexColors: scene.meshes.some((m) => m.vertexColors === true),
   };
-  return { data, block, features, meshMaterials, meshEmitters: meshEmitters.map(({ mesh, first, count }) => ({ mesh, first, count })) };
+  return { data, block, features, meshMaterials, meshEmitters: meshEmitters.map(({ mesh, first, count }) => ({ mesh, first, count })), lightChoice };
+}
+
+/** The environment map's reach: the same everywhere, about a quarter of its radiance's integral over the sphere (pi L for a uniform L). */
+function environmentReach(scene: Scene, integral: number): LightReach {
+  const intensity = scene.environment && 'map' in scene.environment ? scene.environment.intensity : 0;
+  return { bound: null, strength: (integral * intensity) / 4 };
+}
+
+/** An emissive mesh's reach: its box's sphere, about half of L area / d^2 (its triangles face many ways); no box: the same everywhere. */
+function meshReach(m: { radiance: Vec3; area: number; power: number }, box: Box | undefined): LightReach {
+  const strength = (0.5 * m.power) / Math.PI;
+  if (!box) return { bound: null, strength };
+  const center: Vec3 = [0, 1, 2].map((k) => (box.min[k] + box.max[k]) / 2) as Vec3;
+  return { bound: { center, radius: Math.hypot(box.max[0] - box.min[0], box.max[1] - box.min[1], box.max[2] - box.min[2]) / 2 }, strength };
+}
+
+/**
+ * The box the emitter-choice grid covers: the scene's objects, finite
+ * lights, camera and the ground's height, padded by 2% of its diagonal.
+ * Shading points outside it use the global table.
+ */
+function choiceBox(scene: Scene, spheres: readonly SceneSphere[], meshes: readonly { box?: Box }[]): Box | null {
+  const min: Vec3 = [Infinity, Infinity, Infinity];
+  const max: Vec3 = [-Infinity, -Infinity, -Infinity];
+  const add = (p: Vec3, r = 0) => {
+    for (let k = 0; k < 3; k++) {
+      min[k] = Math.min(min[k], p[k] - r);
+      max[k] = Math.max(max[k], p[k] + r);
+    }
+  };
+  add(scene.camera.position);
+  spheres.forEach((s) => add(s.center, s.radius));
+  scene.lights.forEach((l) => {
+    const extent = lightExtent(l);
+    if (extent) add(extent.center, extent.radius);
+  });
+  meshes.forEach((m) => {
+    if (m.box) {
+      add(m.box.min);
+      add(m.box.max);
+    }
+  });
+  if (scene.ground) add([min[0], scene.ground.height, min[2]]);
+  if (!min.every(Number.isFinite) || !max.every(Number.isFinite)) return null;
+  const pad = 0.02 * Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]) + 1e-3;
+  return { min: min.map((v) => v - pad) as Vec3, max: max.map((v) => v + pad) as Vec3 };
 }
 
 /** The scene's spheres in shader order: `spheres`, then the sphere lights as emitter-only spheres. */

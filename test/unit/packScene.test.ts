@@ -3,17 +3,20 @@ import { buildAliasTable } from '../../src/render/aliasTable';
 import { selectCausticGuides } from '../../src/render/causticGuides';
 import { defineRecord, packRecord, recordGlsl } from '../../src/render/layout/records';
 import {
-  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_CHOICE, EMITTER_KINDS, GUIDE_FIELDS, HEADER, MATERIAL, MAX_GUIDES, MAX_SCENE_SPHERES, MESH, SECTIONS, SPHERE,
+  BLOCK_VEC4S, DATA_TEXELS, EMITTER, EMITTER_KINDS, GUIDE_FIELDS, HEADER, MATERIAL, MAX_GUIDES, MAX_SCENE_SPHERES, MESH, SECTIONS, SPHERE,
 } from '../../src/render/layout/scene';
-import { BASE_FEATURES, emitterChoiceWeights } from '../../src/render/packScene';
+import { BASE_FEATURES, emitterChoiceWeights, type PackedScene } from '../../src/render/packScene';
 import { materialGlsl, unpackMaterial } from '../../src/materials/registry';
 import { packScene } from '../../src/render/packScene';
 import { parseScene } from '../../src/scene/schema';
 import { DATA_ROWS, SCENE_ROW_TEXELS, TABLE_TEXELS, sceneLayoutDefines } from '../../src/render/layout/scene';
 import { MAX_SPHERES } from '../../src/scene/limits';
 import { readRecord } from '../support/records';
+import { choiceEntry } from '../support/lightChoice';
 
 const camera = { position: [0, 1, 5], target: [0, 0, 0] };
+
+const globalChoice = (packed: PackedScene, i: number) => choiceEntry(packed, i);
 
 /** Reads record `index` of a table back into named fields, through the layout's own field table. */
 /** A sphere's center.xyz and radius from the sphere-geometry table. */
@@ -87,17 +90,13 @@ describe('packScene', () => {
     expect(emitters.map((e) => e.primitive)).toEqual([0, 2]);
     // Power ~ luminance * r^2: 3 * 1 vs luminance([4, 2, 1]) * 0.25.
     const light = (0.2126 * 4 + 0.7152 * 2 + 0.0722 * 1) * 0.25;
-    expect(emitters[0].pdf).toBeCloseTo(3 / (3 + light), 6);
-    expect(emitters[1].pdf).toBeCloseTo(light / (3 + light), 6);
-    for (const e of emitters) {
-      const sphere = readRecord(packed.data, SECTIONS.spheres, SPHERE, e.primitive as number);
-      expect(sphere.emitterPdf).toBe(e.pdf);
-    }
-    expect(readRecord(packed.data, SECTIONS.spheres, SPHERE, 1).emitterPdf).toBe(0);
+    expect(globalChoice(packed, 0).pdf).toBeCloseTo(3 / (3 + light), 6);
+    expect(globalChoice(packed, 1).pdf).toBeCloseTo(light / (3 + light), 6);
+    emitters.forEach((e, i) => expect(readRecord(packed.data, SECTIONS.spheres, SPHERE, e.primitive as number).emitter).toBe(i));
+    expect(readRecord(packed.data, SECTIONS.spheres, SPHERE, 1).emitter).toBe(-1);
     const ground = readMaterial(packed.data, header.groundMaterial as number);
     expect(ground).toMatchObject({ type: 'standard', roughness: expect.closeTo(0.4, 6) });
-    const choice = readRecord(packed.data, SECTIONS.emitterChoices, EMITTER_CHOICE, 1);
-    expect(choice.alias).toBe(0);
+    expect(globalChoice(packed, 1).alias).toBe(0);
     expect(packed.features).toEqual({ ...BASE_FEATURES, materials: ['dielectric'] });
   });
 
@@ -115,7 +114,7 @@ describe('packScene', () => {
     expect(header.emitterCount).toBe(2);
     const environment = readRecord(packed.data, SECTIONS.emitters, EMITTER, 1);
     expect(environment.kind).toBe(EMITTER_KINDS.environment);
-    expect(header.environmentPdf).toBe(environment.pdf);
+    expect(header.environmentEmitter).toBe(1);
     // pi R^2 * integral * intensity against pi * 4 pi r^2 * luminance; R = 1.5 (camera to light centre spread), at least 1.
     const light = 4 * Math.PI * Math.PI * 0.25 * 10;
     const points = [[0, 1, 5], [0, 3, 0], [0, 0, 0]];
@@ -124,12 +123,12 @@ describe('packScene', () => {
     for (const p of points) radius = Math.max(radius, Math.hypot(p[0] - c[0], p[1] - c[1], p[2] - c[2]));
     radius = Math.max(radius, Math.hypot(0 - c[0], 3 - c[1], 0 - c[2]) + 0.5);
     const sky = Math.PI * radius * radius * integral * 2;
-    expect(environment.pdf).toBeCloseTo(sky / (sky + light), 6);
+    expect(globalChoice(packed, 1).pdf).toBeCloseTo(sky / (sky + light), 6);
     expect(packed.features).toEqual({ ...BASE_FEATURES, materials: ['dielectric'], environmentMap: true, meshes: true });
     // Glass on a mesh stays one-sided in the record: a solid's boundary has both sides already.
     expect(readMaterial(packed.data, packed.meshMaterials[0])).toMatchObject({ type: 'dielectric', twoSided: false });
     // Without the map's distribution (or with a black map) the environment is no emitter.
-    expect(readRecord(packScene(withMap).block, 0, HEADER, 0)).toMatchObject({ emitterCount: 1, environmentPdf: 0 });
+    expect(readRecord(packScene(withMap).block, 0, HEADER, 0)).toMatchObject({ emitterCount: 1, environmentEmitter: -1 });
   });
 
   it("writes each mesh record's first material slot (materialBase) and light-sampling density", () => {
@@ -155,8 +154,8 @@ describe('packScene', () => {
       expect(readMaterial(packed.data, records[0].materialBase as number).type).toBe('dielectric');
       const emitter = readRecord(packed.data, SECTIONS.emitters, EMITTER, 1);
       expect(emitter).toMatchObject({ kind: EMITTER_KINDS.mesh, primitive: 1 });
-      expect(records[1].areaPdf).toBeCloseTo((emitter.pdf as number) / 4, 7);
-      expect(records[0].areaPdf).toBe(0);
+      expect(records[1]).toMatchObject({ emitter: 1, inverseArea: 0.25 });
+      expect(records[0].emitter).toBe(-1);
     }
   });
 
@@ -221,7 +220,8 @@ describe('emitterChoiceWeights', () => {
 
   it('keeps a version-2 scene of sphere lights on the choice by power', () => {
     const scene = parseScene({ camera, lights: [{ position: [0, 4, 0], radius: 0.5, intensity: 10 }, { position: [2, 4, 0], radius: 0.5, intensity: 30 }] });
-    const pdfs = [0, 1].map((i) => readRecord(packScene(scene).data, SECTIONS.spheres, SPHERE, i).emitterPdf as number);
+    const packed = packScene(scene);
+    const pdfs = [0, 1].map((i) => globalChoice(packed, readRecord(packed.data, SECTIONS.spheres, SPHERE, i).emitter as number).pdf);
     expect(pdfs[1] / pdfs[0]).toBeCloseTo(3, 5);
   });
 });

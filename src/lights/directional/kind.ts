@@ -37,6 +37,8 @@ export const directional: LightKind<DirectionalLight> = {
   delta: true,
   // pbrt-v4: the irradiance through the disk that bounds the scene.
   power: (l, bounds) => Math.PI * bounds.radius * bounds.radius * luminance(scale(l.color, l.irradiance)),
+  // Its irradiance, the same everywhere.
+  reach: (l) => ({ bound: null, strength: luminance(scale(l.color, l.irradiance)) }),
   extent: () => null,
   mitsuba: (l) => el('emitter', { type: 'directional' }, [el('vector', { name: 'direction', value: triple(normalize(l.direction)) }), rgb('irradiance', scale(l.color, l.irradiance))]),
   aim: 'direction',

@@ -8,7 +8,7 @@
 import { color, intensity, length, point, white } from '../../scene/schemaParts';
 import type { Vec3 } from '../../scene/types';
 import type { LightKind } from '../kind';
-import { luminance, vec } from '../math';
+import { luminance, planarReach, vec } from '../math';
 import { planarAxes, planarMitsuba, radianceOf, rotationSchema } from '../planar';
 
 export interface DiskLight {
@@ -36,6 +36,7 @@ export const disk: LightKind<DiskLight> = {
   inside: 'dot(ab, ab) <= 1.0',
   area: (l) => ({ center: l.position, ...planarAxes(l.rotation, l.radius, l.radius), area: Math.PI * l.radius * l.radius }),
   power: (l) => Math.PI * Math.PI * l.radius * l.radius * luminance(radianceOf(l)),
+  reach: (l) => planarReach(disk.area!(l), radianceOf(l)),
   extent: (l) => ({ center: l.position, radius: l.radius }),
   mitsuba: (l) => planarMitsuba('disk', l.position, l.rotation, l.radius, l.radius, radianceOf(l)),
   aim: 'rotation',

@@ -31,6 +31,8 @@ export const pointLight: LightKind<PointLight> = {
   delta: true,
   // 4 pi steradians of intensity I.
   power: (l) => 4 * Math.PI * luminance(scale(l.color, l.intensity)),
+  // Intensity I: I / d^2 at distance d, every way.
+  reach: (l) => ({ bound: { center: l.position, radius: 0 }, strength: luminance(scale(l.color, l.intensity)) }),
   extent: (l) => ({ center: l.position, radius: 0 }),
   mitsuba: (l) => el('emitter', { type: 'point' }, [pointXml('position', l.position), rgb('intensity', scale(l.color, l.intensity))]),
   controls: [

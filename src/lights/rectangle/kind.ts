@@ -10,7 +10,7 @@ import * as z from 'zod';
 import { color, intensity, MAX_COORDINATE, point, shapeError, white } from '../../scene/schemaParts';
 import type { Vec3 } from '../../scene/types';
 import type { LightKind } from '../kind';
-import { luminance, vec } from '../math';
+import { luminance, planarReach, vec } from '../math';
 import { planarAxes, planarMitsuba, radianceOf, rotationSchema } from '../planar';
 
 export interface RectangleLight {
@@ -51,6 +51,7 @@ export const rectangle: LightKind<RectangleLight> = {
   area: (l) => ({ center: l.position, ...planarAxes(l.rotation, l.size[0] / 2, l.size[1] / 2), area: l.size[0] * l.size[1] }),
   // One face emits: pi * area * luminance(L).
   power: (l) => Math.PI * l.size[0] * l.size[1] * luminance(radianceOf(l)),
+  reach: (l) => planarReach(rectangle.area!(l), radianceOf(l)),
   extent: (l) => ({ center: l.position, radius: Math.hypot(l.size[0], l.size[1]) / 2 }),
   mitsuba: (l) => planarMitsuba('rectangle', l.position, l.rotation, l.size[0] / 2, l.size[1] / 2, radianceOf(l)),
   aim: 'rotation',

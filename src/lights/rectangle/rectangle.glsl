@@ -96,5 +96,5 @@ LightSample rectangleLightSample(Emitter e, vec3 x, vec2 u) {
 
 float rectangleLightPdf(vec3 x, vec3 direction, Hit hit) {
   PlanarLight l = loadPlanarLight(int(hit.geometry.x));
-  return hit.emitterPdf * rectanglePdf(x, hit.position, l.center, l.u, l.v);
+  return rectanglePdf(x, hit.position, l.center, l.u, l.v);
 }

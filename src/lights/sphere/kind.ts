@@ -9,7 +9,7 @@ import { el, float, point, rgb } from '../../scene/mitsubaXml';
 import { color, intensity, length, point as pointSchema, white } from '../../scene/schemaParts';
 import type { Vec3 } from '../../scene/types';
 import type { LightKind } from '../kind';
-import { luminance, scale, vec } from '../math';
+import { luminance, scale, sphereReach, vec } from '../math';
 
 export interface SphereLight {
   type: 'sphere';
@@ -37,6 +37,7 @@ export const sphere: LightKind<SphereLight> = {
   delta: false,
   sphere: (l) => ({ center: l.position, radius: l.radius }),
   power: (l) => spherePower(l.radius, scale(l.color, l.intensity)),
+  reach: (l) => sphereReach(l.position, l.radius, scale(l.color, l.intensity)),
   extent: (l) => ({ center: l.position, radius: l.radius }),
   mitsuba: (l) => {
     const radiance = scale(l.color, l.intensity);

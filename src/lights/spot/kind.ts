@@ -81,6 +81,12 @@ export const spot: LightKind<SpotLight> = {
     const { cosCutoff, cosBeam } = spotCone(l);
     return 2 * Math.PI * (1 - 0.5 * (cosCutoff + cosBeam)) * luminance(scale(l.color, l.intensity));
   },
+  // I / d^2 at most, and nothing outside the cutoff cone.
+  reach: (l) => ({
+    bound: { center: l.position, radius: 0 },
+    strength: luminance(scale(l.color, l.intensity)),
+    cone: { axis: normalize(sub(l.target, l.position)), cosCutoff: spotCone(l).cosCutoff },
+  }),
   extent: (l) => ({ center: l.position, radius: 0 }),
   mitsuba: (l) => {
     const axis = normalize(sub(l.target, l.position));

@@ -6,7 +6,8 @@
  */
 import type { SceneAssets } from '../../scene/assets';
 import { applyMatrix, meshToWorldMatrix, transformMesh } from '../../scene/mesh';
-import type { Scene as SceneModel, TriangleMesh } from '../../scene/types';
+import type { Scene as SceneModel, TriangleMesh, Vec3 } from '../../scene/types';
+import type { Box } from '../lightChoice';
 import { resolveFileMaterials, type RenderScene as Scene } from '../../scene/fileMaterials';
 import { groupMeshes, trianglesIn, type BvhMeshInput, type MeshGroups, type PackedBvh } from '../bvh';
 
@@ -20,8 +21,8 @@ export interface WorldMeshes {
   meshes: (TriangleMesh | null)[];
   /** Each scene mesh's object-to-world matrix (column-major 4x4). */
   toWorld: Float64Array[];
-  /** Each scene mesh's world-space area and triangle count. */
-  sizes: { area: number; triangles: number }[];
+  /** Each scene mesh's world-space area, triangle count and bounding box. */
+  sizes: MeshSize[];
   /** Each scene mesh: whether its material multiplies by its file's vertex colors (the BVH stores them only then). */
   vertexColors: boolean[];
 }
@@ -33,15 +34,51 @@ export function triangleArea(p: ArrayLike<number>, i: Uint32Array, t: number): n
   return 0.5 * Math.hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
 }
 
+export interface MeshSize {
+  area: number;
+  triangles: number;
+  box: Box;
+}
+
+/** The bounding box of positions (x, y, z, ...). */
+function positionsBox(p: ArrayLike<number>): Box {
+  const min: Vec3 = [Infinity, Infinity, Infinity];
+  const max: Vec3 = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < p.length; i += 3) {
+    for (let k = 0; k < 3; k++) {
+      min[k] = Math.min(min[k], p[i + k]);
+      max[k] = Math.max(max[k], p[i + k]);
+    }
+  }
+  return { min, max };
+}
+
+/** Object-space boxes of decoded files, computed once per file. */
+const fileBoxes = new WeakMap<TriangleMesh, Box>();
+
+/** The world box of `box` through the column-major matrix m: the box of its 8 corners. */
+function transformedBox(box: Box, m: Float64Array): Box {
+  const corners: number[] = [];
+  for (let c = 0; c < 8; c++) {
+    const p = [c & 1 ? box.max[0] : box.min[0], c & 2 ? box.max[1] : box.min[1], c & 4 ? box.max[2] : box.min[2]];
+    for (let row = 0; row < 3; row++) corners.push(m[row] * p[0] + m[4 + row] * p[1] + m[8 + row] * p[2] + m[12 + row]);
+  }
+  return positionsBox(corners);
+}
+
 /**
  * An instance's size. Its area is computed only if read: only emitters need
  * areas, and instances never emit (groups.ts), while transforming a big
  * model's vertices on every move would cost the page tens of milliseconds.
+ * Its box is its file's, transformed.
  */
-function instanceSize(data: TriangleMesh, toWorld: Float64Array): { area: number; triangles: number } {
+function instanceSize(data: TriangleMesh, toWorld: Float64Array): MeshSize {
   let area: number | undefined;
+  let local = fileBoxes.get(data);
+  if (!local) fileBoxes.set(data, (local = positionsBox(data.positions)));
   return {
     triangles: data.indices.length / 3,
+    box: transformedBox(local, toWorld),
     get area() {
       return (area ??= meshArea(data, toWorld));
     },
@@ -133,7 +170,7 @@ export function prepareWorldMeshes(scene: Scene, assets: SceneAssets, previous: 
   }
   const vertexColors = vertexColorsOf(scene);
   const meshes = scene.meshes.map((mesh, i) => (groups.world.includes(i) ? transformMesh(data[i], mesh) : null));
-  const sizes = meshes.map((m, i) => (m ? { area: meshArea(m), triangles: m.indices.length / 3 } : instanceSize(data[i], toWorld[i])));
+  const sizes = meshes.map((m, i) => (m ? { area: meshArea(m), triangles: m.indices.length / 3, box: positionsBox(m.positions) } : instanceSize(data[i], toWorld[i])));
   return { key, data, groups, meshes, toWorld, sizes, vertexColors };
 }
 

@@ -28,6 +28,8 @@ export const TEXTURE_UNITS = {
   texturesSrgb8: 11,
   texturesLinear8: 12,
   texturesFloat: 13,
+  /** The emitter-choice tables (lights/lights.glsl uLightChoice). */
+  lightChoice: 14,
 } as const;
 
 /** The environment map's units in the form EnvironmentTextures takes. */

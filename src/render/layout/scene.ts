@@ -22,16 +22,17 @@ export { EMITTER_KINDS, PLANAR_LIGHT };
 export const MATERIAL = { texels: MATERIAL_TEXELS } as const;
 
 /**
- * A sphere (also each `lights` entry, with an emitter-only material): its
- * material and `emitterPdf`, the probability that light sampling picks this
- * sphere (0 when it does not emit), for the MIS weight of a hit on it. Its
+ * A sphere (also each sphere light, with an emitter-only material): its
+ * material and `emitter`, its slot in the emitter table (-1 when it does
+ * not emit), for the MIS weight of a hit on it (the probability of picking
+ * it is read at the previous vertex: render/lightChoice.ts). Its
  * geometry (center.xyz, radius) is a texel of its own in the
  * sphere-geometry table (SECTIONS.sphereGeometry), which the intersection
  * loops read for every sphere on every ray.
  */
 export const SPHERE = defineRecord('SphereRecord', [
   ['material', 'int'],
-  ['emitterPdf', 'float'],
+  ['emitter', 'int'],
 ]);
 
 /**
@@ -46,13 +47,14 @@ export const SPHERE = defineRecord('SphereRecord', [
 export const EMITTER = emitterLayout();
 
 /**
- * A mesh: `areaPdf` is the density, per unit area, with which light sampling
- * picks a point on it (0 when it does not emit), for the MIS weight of a hit;
- * `materialBase` the material-table index of its material 0: a hit's
+ * A mesh: `emitter` its slot in the emitter table (-1 when it does not
+ * emit) and `inverseArea` 1 / its area (light sampling draws a point on it
+ * with that density per unit area once it picked the mesh), for the MIS
+ * weight of a hit; `materialBase` the material-table index of its material 0: a hit's
  * material is materialBase + the triangle's mesh-local material index
  * (src/render/bvh/pack.ts), so the BVH holds no global material slot.
  */
-export const MESH = defineRecord('MeshRecord', [['areaPdf', 'float'], ['materialBase', 'int']]);
+export const MESH = defineRecord('MeshRecord', [['emitter', 'int'], ['materialBase', 'int'], ['inverseArea', 'float']]);
 
 /**
  * An instance of a BVH group (src/render/bvh/groups.ts), in the instance
@@ -73,15 +75,6 @@ export const INSTANCE = defineRecord('InstanceRecord', [
   ['mesh', 'int'],
 ]);
 
-/**
- * Slot i of the alias table (Walker) that picks emitters in proportion to
- * power: keep i when frac(u * n) < aliasThreshold, else take `alias`.
- */
-export const EMITTER_CHOICE = defineRecord('EmitterChoice', [
-  ['aliasThreshold', 'float'],
-  ['alias', 'int'],
-]);
-
 /** Per-scene constants (uniform block `SceneHeader`, `uHeader[]`). */
 export const HEADER = defineRecord('Header', [
   ['sphereCount', 'int'],
@@ -93,8 +86,17 @@ export const HEADER = defineRecord('Header', [
   /** Rectangle and disk lights (the planar-light table). */
   ['planarLightCount', 'int'],
   ['environment', 'vec3'],
-  /** Probability that light sampling picks the environment map (0: none). */
-  ['environmentPdf', 'float'],
+  /** The environment map's slot in the emitter table (-1: none, or a constant sky, which is never sampled). */
+  ['environmentEmitter', 'int'],
+  /**
+   * The grid of emitter-choice tables (render/lightChoice.ts): its corner,
+   * cells per unit length and cells per axis (0: no grid), and the index of
+   * the global table (points outside the grid).
+   */
+  ['lightChoiceOrigin', 'vec3'],
+  ['lightChoiceGlobal', 'int'],
+  ['lightChoiceScale', 'vec3'],
+  ['lightChoiceCells', 'vec3'],
 ]);
 
 /** caustic_guide.glsl holds exactly two named cones: change both together. */
@@ -125,6 +127,9 @@ export const MAX_SCENE_SPHERES = MAX_SPHERES + MAX_LIGHTS;
 export const MAX_MATERIALS = MAX_SCENE_SPHERES + MAX_MESHES + 1;
 export const MAX_EMITTERS = MAX_SCENE_SPHERES + 1 + MAX_MESHES;
 
+/** Width of the emitter-choice texture (render/lightChoice.ts): a power of two, so the shader splits an index with a mask and a shift. */
+export const LIGHT_CHOICE_WIDTH = 2048;
+
 /** Planar lights per culling group (render/planarGroups.ts). */
 export const PLANAR_GROUP_SIZE = 4;
 
@@ -140,7 +145,6 @@ const TABLES = [
   ['materials', MAX_MATERIALS * MATERIAL.texels],
   ['spheres', MAX_SCENE_SPHERES * SPHERE.texels],
   ['emitters', MAX_EMITTERS * EMITTER.texels],
-  ['emitterChoices', MAX_EMITTERS * EMITTER_CHOICE.texels],
   ['meshes', MAX_MESHES * MESH.texels],
   ['textures', MAX_TEXTURES * TEXTURE.texels],
   ['planarLights', MAX_LIGHTS * PLANAR_LIGHT.texels],
@@ -175,7 +179,6 @@ export function sceneLayoutDefines(): Record<string, number> {
     ...recordDefines(SPHERE),
     ...lightDefines(),
     ...recordDefines(PLANAR_LIGHT),
-    ...recordDefines(EMITTER_CHOICE),
     ...recordDefines(MESH),
     ...recordDefines(TEXTURE),
     ...recordDefines(INSTANCE),
@@ -183,12 +186,13 @@ export function sceneLayoutDefines(): Record<string, number> {
     MATERIALS_FIRST: SECTIONS.materials,
     SPHERES_FIRST: SECTIONS.spheres,
     EMITTERS_FIRST: SECTIONS.emitters,
-    EMITTER_CHOICES_FIRST: SECTIONS.emitterChoices,
     MESHES_FIRST: SECTIONS.meshes,
     PLANAR_LIGHTS_FIRST: SECTIONS.planarLights,
     PLANAR_BOUNDS_FIRST: SECTIONS.planarBounds,
     PLANAR_GROUPS_FIRST: SECTIONS.planarGroups,
     PLANAR_GROUP_SIZE,
+    LIGHT_CHOICE_WIDTH,
+    LIGHT_CHOICE_WIDTH_LOG2: Math.log2(LIGHT_CHOICE_WIDTH),
     TEXTURES_FIRST: SECTIONS.textures,
     SCENE_ROW_TEXELS,
     SCENE_ROW_BITS,
@@ -204,7 +208,7 @@ export function sceneLayoutDefines(): Record<string, number> {
 
 /** The generated GLSL: a struct and a loader per record (see records.ts). */
 export function sceneLayoutGlsl(): string {
-  const tables: RecordLayout[] = [SPHERE, EMITTER_CHOICE, MESH, TEXTURE];
+  const tables: RecordLayout[] = [SPHERE, MESH, TEXTURE];
   return [
     '// Generated from src/render/layout/scene.ts: do not edit.',
     ...tables.map((layout) => recordGlsl(layout, 'sceneData')),

@@ -9,7 +9,8 @@ import { missingAssets, type SceneAssets } from '../../scene/assets';
 import type { TextureInput } from '../../scene/texture/texture';
 import { areaMean, textureEmissionMeans } from '../geometry/records';
 import { SceneError } from '../../scene/schema';
-import { BLOCK_VEC4S, DATA_ROWS, SCENE_ROW_TEXELS } from '../layout/scene';
+import { BLOCK_VEC4S, DATA_ROWS, LIGHT_CHOICE_WIDTH, SCENE_ROW_TEXELS } from '../layout/scene';
+import { createDataTexture } from '../gl/dataTexture';
 import { AssetTextures, environmentDistribution } from './assetTextures';
 import { prepareWorldMeshes, type PrebuiltBvh, type WorldMeshes } from '../geometry/world';
 import { BASE_FEATURES, packScene, type SceneFeatures } from '../packScene';
@@ -35,6 +36,7 @@ const UNIFORM_TYPES: Record<string, string> = {
   uSamplesPerDraw: 'uint',
   uSeed: 'uint',
   uSceneData: 'sampler2D',
+  uLightChoice: 'sampler2D',
   uTiles: 'uvec4',
   uTileGrid: 'uvec3',
 };
@@ -60,6 +62,8 @@ export class TracePass {
    * (per-lane conditional loads). The uniform block holds only constants.
    */
   private readonly sceneTexture: WebGLTexture;
+  /** The emitter-choice tables (render/lightChoice.ts), LIGHT_CHOICE_WIDTH wide; `rows` of them. */
+  private lightChoice: { texture: WebGLTexture; rows: number } | null = null;
 
   private readonly defines: Record<string, string | number>;
   /** The meshes prepared for the last scene (kept: the next keeps its copies where they still fit). */
@@ -131,6 +135,7 @@ export class TracePass {
     gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
     gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, SCENE_ROW_TEXELS, DATA_ROWS, gl.RGBA, gl.FLOAT, packed.data);
     gl.bindTexture(gl.TEXTURE_2D, null);
+    this.uploadLightChoice(packed.lightChoice.texels);
     this.program = this.programFor(packed.features);
     const frame = cameraFrame(scene.camera);
     this.current = { scene, frame, width, height, features: packed.features };
@@ -138,6 +143,22 @@ export class TracePass {
       this.setCameraUniforms(program, scene, frame, width, height);
       this.assets.setUniforms(program, scene);
     }
+  }
+
+  /** The emitter-choice tables, in a texture of as many rows as they need (a new one only when they need more). */
+  private uploadLightChoice(texels: Float32Array): void {
+    const gl = this.gl;
+    const rows = Math.max(1, Math.ceil(texels.length / 4 / LIGHT_CHOICE_WIDTH));
+    const data = new Float32Array(rows * LIGHT_CHOICE_WIDTH * 4);
+    data.set(texels);
+    if (this.lightChoice && this.lightChoice.rows >= rows) {
+      gl.bindTexture(gl.TEXTURE_2D, this.lightChoice.texture);
+      gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, LIGHT_CHOICE_WIDTH, rows, gl.RGBA, gl.FLOAT, data);
+    } else {
+      if (this.lightChoice) gl.deleteTexture(this.lightChoice.texture);
+      this.lightChoice = { texture: createDataTexture(gl, LIGHT_CHOICE_WIDTH, rows, data), rows };
+    }
+    gl.bindTexture(gl.TEXTURE_2D, null);
   }
 
   private setCameraUniforms(program: Program, scene: RenderScene, frame: CameraFrame, width: number, height: number): void {
@@ -154,6 +175,7 @@ export class TracePass {
         uMaxBounces: scene.render.maxBounces,
         uAccumulation: TEXTURE_UNITS.accumulation,
         uSceneData: TEXTURE_UNITS.sceneData,
+        uLightChoice: TEXTURE_UNITS.lightChoice,
       },
       UNIFORM_TYPES,
     );
@@ -193,6 +215,8 @@ export class TracePass {
     this.assets.bind(program);
     gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNITS.sceneData);
     gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
+    gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNITS.lightChoice);
+    gl.bindTexture(gl.TEXTURE_2D, this.lightChoice?.texture ?? null);
     gl.activeTexture(gl.TEXTURE0);
   }
 
@@ -223,5 +247,6 @@ export class TracePass {
     this.assets.dispose();
     this.gl.deleteBuffer(this.sceneBuffer);
     this.gl.deleteTexture(this.sceneTexture);
+    if (this.lightChoice) this.gl.deleteTexture(this.lightChoice.texture);
   }
 }

@@ -1,8 +1,8 @@
-// Emissive meshes as emitters: light sampling picks a mesh by power (the
-// emitter table), then one of its triangles in proportion to its area (an
+// Emissive meshes as emitters: light sampling picks a mesh (lights.glsl),
+// then one of its triangles in proportion to its area (an
 // alias table per mesh in uEmissiveTriangles, src/render/passes/assetTextures.ts),
 // then a uniform point on the triangle. So a point has the density, per unit
-// area, of the mesh's MeshRecord.areaPdf = pdf(mesh) / area(mesh), turned
+// area, of the mesh's MeshRecord.inverseArea = 1 / area(mesh) (times the choice of the mesh), turned
 // into solid angle at x by distance^2 / |cos| at the light, the cosine taken
 // against the SHADING normal, as Mitsuba 3 does (Mesh::sample_position and
 // DirectionSample put the interpolated vertex normal in ds.n, and
@@ -46,7 +46,7 @@ vec3 sampleMeshEmitter(vec3 x, Emitter e, vec3 u, out float pdf, out float dista
   distance = length(toLight);
   vec3 direction = toLight / distance;
   float cosLight = abs(dot(direction, surface.shadingNormal));
-  pdf = pick(cosLight > 0.0, loadMesh(e.primitive).areaPdf / e.pdf * distance * distance / cosLight, 0.0);
+  pdf = pick(cosLight > 0.0, loadMesh(e.primitive).inverseArea * distance * distance / cosLight, 0.0);
 #if HAS_TEXTURED_EMISSION || HAS_SEE_THROUGH
   // The radiance at the point (a textured emission's texture), seen where
   // the surface is opaque: times its opacity (the format's o * Le, which a
@@ -61,10 +61,10 @@ vec3 sampleMeshEmitter(vec3 x, Emitter e, vec3 u, out float pdf, out float dista
 }
 
 // Density of light sampling drawing `direction` from x towards the
-// triangle `hit` (its emitterPdf is the mesh's areaPdf), emitter choice included.
+// triangle `hit` (its emitterDensity is the mesh's inverseArea), once it picked the mesh.
 float meshEmitterPdf(vec3 direction, Hit hit) {
   float cosLight = abs(dot(direction, hit.normal));  // the shading normal (see above)
-  return pick(cosLight > 0.0, hit.emitterPdf * hit.t * hit.t / cosLight, 0.0);
+  return pick(cosLight > 0.0, hit.emitterDensity * hit.t * hit.t / cosLight, 0.0);
 }
 
 #endif

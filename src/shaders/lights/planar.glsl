@@ -21,10 +21,10 @@ LightSample planarAreaSample(PlanarLight l, vec3 x, vec3 p, float area, vec3 rad
   return s;
 }
 
-// hit.emitterPdf: the probability of picking the light.
+// Once the light is picked (lights.glsl multiplies in the choice).
 float planarAreaPdf(vec3 direction, Hit hit, float area) {
   float cosLight = abs(dot(direction, hit.normal));
-  return pick(cosLight > 0.0, hit.emitterPdf * hit.t * hit.t / (cosLight * area), 0.0);
+  return pick(cosLight > 0.0, hit.t * hit.t / (cosLight * area), 0.0);
 }
 
 #endif

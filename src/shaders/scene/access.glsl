@@ -6,7 +6,7 @@ bool groundEnabled() { return readHeader(0).groundEnabled != 0; }
 float groundHeight() { return readHeader(0).groundHeight; }
 int groundMaterial() { return readHeader(0).groundMaterial; }
 vec3 constantEnvironment() { return readHeader(0).environment; }
-float environmentEmitterPdf() { return readHeader(0).environmentPdf; }
+int environmentEmitter() { return readHeader(0).environmentEmitter; }
 int planarLightCount() { return readHeader(0).planarLightCount; }
 
 int sphereTexel(int i, int field) { return SPHERES_FIRST + i * SPHERE_RECORD_TEXELS + field; }
@@ -15,7 +15,6 @@ vec4 sphereGeometry(int i) { return texelFetch(uSceneData, ivec2(SPHERE_GEOMETRY
 SphereRecord loadSphere(int i) { return readSphereRecord(sphereTexel(i, 0)); }
 Material loadMaterial(int i) { return readMaterial(MATERIALS_FIRST + i * MATERIAL_TEXELS); }
 Emitter loadEmitter(int i) { return readEmitter(EMITTERS_FIRST + i * EMITTER_TEXELS); }
-EmitterChoice loadEmitterChoice(int i) { return readEmitterChoice(EMITTER_CHOICES_FIRST + i * EMITTER_CHOICE_TEXELS); }
 MeshRecord loadMesh(int i) { return readMeshRecord(MESHES_FIRST + i * MESH_RECORD_TEXELS); }
 // center.xyz, radius of a sphere around planar light i; in row 0 like sphereGeometry.
 vec4 planarLightBound(int i) { return texelFetch(uSceneData, ivec2(PLANAR_BOUNDS_FIRST + i, 0), 0); }

@@ -29,8 +29,9 @@ struct Hit {
 #endif
   vec4 geometry;    // the sphere hit: [center, radius]; a planar light: [slot, emitter tag, 0, 0]
   int material;     // index into the material table
-  float emitterPdf; // sphere, planar light: probability that light sampling picks it; triangle: the mesh's
-                    // density per unit area (lights/mesh_emitter.glsl); 0: not an emitter
+  int emitter;      // its slot in the emitter table (-1: it does not emit; the sky: the map's)
+  float emitterDensity; // triangles: the mesh's density per unit area once light sampling picked it
+                        // (lights/mesh_emitter.glsl); 1 for the others
 };
 
 // Nearest t > 0 where the ray (unit direction) meets the sphere, or
@@ -132,7 +133,8 @@ void planarLightHit(inout Hit hit, vec3 origin, vec3 direction, int i, float t) 
   hit.scale = 0.0;
   hit.geometry = vec4(float(i), float(l.kind), 0.0, 0.0);
   hit.material = l.material;
-  hit.emitterPdf = l.emitterPdf;
+  hit.emitter = l.emitter;
+  hit.emitterDensity = 1.0;
 }
 #endif
 
@@ -166,7 +168,10 @@ Hit intersectScene(vec3 origin, vec3 direction) {
   hit.scale = pick(isGround, abs(groundHeight()), geometry.w);
   hit.geometry = geometry;
   hit.material = pick(isGround, groundMaterial(), record.material);
-  hit.emitterPdf = isGround ? 0.0 : record.emitterPdf;
+  int skyEmitter = environmentEmitter();
+  int surfaceEmitter = isGround ? -1 : record.emitter;
+  hit.emitter = hit.kind == HIT_NONE ? skyEmitter : surfaceEmitter;
+  hit.emitterDensity = 1.0;
   hit.geometricNormal = hit.normal;
   hit.uv = isGround ? groundPosition.xz : vec2(0.0);
   hit.tangent = vec4(isGround ? vec3(1.0, 0.0, 0.0) : vec3(0.0), 1.0);  // the ground: u = x, v = z
@@ -205,11 +210,8 @@ Hit intersectScene(vec3 origin, vec3 direction) {
     hit.scale = 0.0;
     MeshRecord mesh = loadMesh(s.mesh);
     hit.material = mesh.materialBase + s.localMaterial;
-#if HAS_EMISSIVE_MESHES
-    hit.emitterPdf = mesh.areaPdf;
-#else
-    hit.emitterPdf = 0.0;
-#endif
+    hit.emitter = mesh.emitter;
+    hit.emitterDensity = mesh.inverseArea;
   }
 #endif
   return hit;
