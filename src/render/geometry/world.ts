@@ -67,18 +67,26 @@ function transformedBox(box: Box, m: Float64Array): Box {
 }
 
 /**
+ * A mesh's world box: its file's box, transformed (a copy's and an
+ * instance's are the same, so the emitter-choice grid does not depend on
+ * how a mesh is stored).
+ */
+function worldBox(data: TriangleMesh, toWorld: Float64Array): Box {
+  let local = fileBoxes.get(data);
+  if (!local) fileBoxes.set(data, (local = positionsBox(data.positions)));
+  return transformedBox(local, toWorld);
+}
+
+/**
  * An instance's size. Its area is computed only if read: only emitters need
  * areas, and instances never emit (groups.ts), while transforming a big
  * model's vertices on every move would cost the page tens of milliseconds.
- * Its box is its file's, transformed.
  */
 function instanceSize(data: TriangleMesh, toWorld: Float64Array): MeshSize {
   let area: number | undefined;
-  let local = fileBoxes.get(data);
-  if (!local) fileBoxes.set(data, (local = positionsBox(data.positions)));
   return {
     triangles: data.indices.length / 3,
-    box: transformedBox(local, toWorld),
+    box: worldBox(data, toWorld),
     get area() {
       return (area ??= meshArea(data, toWorld));
     },
@@ -170,7 +178,7 @@ export function prepareWorldMeshes(scene: Scene, assets: SceneAssets, previous: 
   }
   const vertexColors = vertexColorsOf(scene);
   const meshes = scene.meshes.map((mesh, i) => (groups.world.includes(i) ? transformMesh(data[i], mesh) : null));
-  const sizes = meshes.map((m, i) => (m ? { area: meshArea(m), triangles: m.indices.length / 3, box: positionsBox(m.positions) } : instanceSize(data[i], toWorld[i])));
+  const sizes = meshes.map((m, i) => (m ? { area: meshArea(m), triangles: m.indices.length / 3, box: worldBox(data[i], toWorld[i]) } : instanceSize(data[i], toWorld[i])));
   return { key, data, groups, meshes, toWorld, sizes, vertexColors };
 }
 
