@@ -6,17 +6,19 @@
  */
 import type { Program } from './gl/program';
 import { createDataTextureArray } from './gl/dataTexture';
-import { BVH_LAYER_ROWS, BVH_ROOT_NODE, BVH_ROW_TRIANGLES, BVH_TEXTURE_WIDTH, type PackedBvh } from './bvh/pack';
-import { MAX_BVH_DEPTH } from './bvh/build';
+import { BVH_FIRST_SLOT, BVH_LAYER_ROWS, BVH_NODE_TEXELS, BVH_ROOT_NODE, BVH_ROW_TRIANGLES, BVH_TEXTURE_WIDTH, type PackedBvh } from './bvh/pack';
+import { MAX_WIDE_STACK } from './bvh/wide';
 
 /** The #defines bvh.glsl expects (its defaults equal these; pass them to keep TS and GLSL in one place). */
 export function bvhDefines(): Record<string, number> {
   return {
     BVH_TEXTURE_WIDTH_LOG2: Math.log2(BVH_TEXTURE_WIDTH),
     BVH_LAYER_ROWS_LOG2: Math.log2(BVH_LAYER_ROWS),
-    BVH_STACK_SIZE: MAX_BVH_DEPTH,
+    BVH_STACK_SIZE: MAX_WIDE_STACK,
     BVH_ROW_TRIANGLES,
     BVH_ROOT_NODE,
+    BVH_FIRST_SLOT,
+    BVH_NODE_TEXELS,
   };
 }
 

@@ -84,11 +84,11 @@ function trianglesUnder(packed: PackedBvh, root: number): Set<number> {
   const stack = [root];
   while (stack.length) {
     const q = stack.pop()!;
-    for (let c = 0; c < 2; c++) {
+    for (let c = 0; c < 4; c++) {
       const o = q * BVH_NODE_TEXELS * 4;
-      const [ref, end] = [d[o + c * 4 + 3], d[o + 8 + c * 4 + 3]];
-      if (end > 0) for (let t = triangleAt(ref); t < triangleAt(end); t++) found.add(t);
-      else stack.push(ref);
+      const [ref, count] = [d[o + 24 + c], d[o + 28 + c]];
+      if (count > 0) for (let t = triangleAt(ref); t < triangleAt(ref) + count; t++) found.add(t);
+      else if (count === 0) stack.push(ref);
     }
   }
   return found;

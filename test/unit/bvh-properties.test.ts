@@ -10,6 +10,7 @@ import { readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
 import { buildBvh, MAX_BVH_DEPTH, type BvhMeshInput } from '../../src/render/bvh/build';
+import { MAX_WIDE_STACK } from '../../src/render/bvh/wide';
 import { BVH_NODE_TEXELS, BVH_ROOT_NODE, MAX_COLORED_TRIANGLES, MAX_TRIANGLES, packBvh, triangleAt, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
 import { bruteForce, colorTexel, hitColor, hitUv, traverseBvh, uvTexel, type Vec3 } from '../../src/render/bvh/traverse';
 import { decodeMesh } from '../../src/scene/mesh';
@@ -20,27 +21,23 @@ function build(meshes: BvhMeshInput[]): PackedBvh {
   return packBvh(buildBvh(meshes), meshes);
 }
 
-/** The children of stored node q: box (lo, hi), and a leaf's triangles (first `ref`, `count`) or a child node (`ref`, count 0). */
+/** The children of stored node q: box (lo, hi), and a leaf's triangles (first `ref`, `count`) or a child node (`ref`, count 0); empty slots left out. */
 function children(packed: PackedBvh, q: number) {
   const d = packed.texture.data;
   const o = q * BVH_NODE_TEXELS * 4;
-  return [0, 1].map((c) => {
-    const [ref, end] = [d[o + c * 4 + 3], d[o + 8 + c * 4 + 3]];
-    if (end > 0) {
-      // A leaf stores texels: of its first triangle and of the one after its last.
-      expect(triangleTexel(triangleAt(ref)), `node ${q}: a leaf starts at a triangle's first texel`).toBe(ref);
-      expect(triangleTexel(triangleAt(end)), `node ${q}: a leaf ends at a triangle's first texel`).toBe(end);
-    }
+  return [0, 1, 2, 3].filter((c) => d[o + 28 + c] >= 0).map((c) => {
+    const [ref, count] = [d[o + 24 + c], d[o + 28 + c]];
+    if (count > 0) expect(triangleTexel(triangleAt(ref)), `node ${q}: a leaf starts at a triangle's first texel`).toBe(ref);
     return {
-      lo: [0, 1, 2].map((k) => d[o + c * 8 + k]),
-      hi: [0, 1, 2].map((k) => d[o + c * 8 + 4 + k]),
-      ref: end > 0 ? triangleAt(ref) : ref,
-      count: end > 0 ? triangleAt(end) - triangleAt(ref) : 0,
+      lo: [0, 1, 2].map((k) => d[o + 8 * k + c]),
+      hi: [0, 1, 2].map((k) => d[o + 8 * k + 4 + c]),
+      ref: count > 0 ? triangleAt(ref) : ref,
+      count,
     };
   });
 }
 
-/** Walks the packed tree; returns how often each stored node and each triangle is reached, and the deepest leaf's depth. */
+/** Walks the packed tree; returns how often each stored node and each triangle is reached, and the most stack entries a path needs (one per child but one of each wide node on it). */
 function walk(packed: PackedBvh): { nodeVisits: Map<number, number>; triangleVisits: Uint32Array; maxDepth: number } {
   const nodeVisits = new Map<number, number>();
   const triangleVisits = new Uint32Array(packed.triangleCount);
@@ -49,14 +46,12 @@ function walk(packed: PackedBvh): { nodeVisits: Map<number, number>; triangleVis
   while (stack.length) {
     const [q, depth] = stack.pop()!;
     nodeVisits.set(q, (nodeVisits.get(q) ?? 0) + 1);
-    const [c0, c1] = children(packed, q);
-    // A root that is a leaf is stored as a node with that leaf twice.
-    const leafRoot = q === BVH_ROOT_NODE && c0.count > 0 && c0.ref === c1.ref && c0.count === c1.count;
-    for (const c of leafRoot ? [c0] : [c0, c1]) {
-      if (c.count > 0) {
-        for (let j = c.ref; j < c.ref + c.count; j++) triangleVisits[j]++;
-        maxDepth = Math.max(maxDepth, leafRoot ? 0 : depth + 1);
-      } else stack.push([c.ref, depth + 1]);
+    const kids = children(packed, q);
+    const below = depth + kids.length - 1;
+    maxDepth = Math.max(maxDepth, below);
+    for (const c of kids) {
+      if (c.count > 0) for (let j = c.ref; j < c.ref + c.count; j++) triangleVisits[j]++;
+      else stack.push([c.ref, below]);
     }
   }
   return { nodeVisits, triangleVisits, maxDepth };
@@ -83,7 +78,6 @@ function expectBoundsNested(packed: PackedBvh): void {
         stack.push(c.ref);
       }
     }
-    if (pair[0].count > 0 && pair[1].count > 0 && pair[0].ref !== pair[1].ref) expect(pair[0].ref + pair[0].count, `node ${q}: sibling leaves are consecutive`).toBe(pair[1].ref);
   }
 }
 
@@ -106,9 +100,12 @@ describe('BVH structure', () => {
         const packed = build(meshes);
         const total = meshes.reduce((s, m) => s + m.indices.length / 3, 0);
         expect(packed.triangleCount).toBe(total);
-        // No 4-texel read from a triangle's first texel leaves its row; triangles precede the normals.
+        // No 8-texel read from a triangle's first texel leaves its row, nor reads the root (texels 0 .. 7).
         for (let j = 0; j < total; j++) expect(triangleTexel(j) % 2048).toBeLessThanOrEqual(2040);
+        for (let j = 0; j < total; j++) expect(triangleTexel(j)).toBeGreaterThanOrEqual(8);
         const { nodeVisits, triangleVisits } = walk(packed);
+        // Every node but a leaf root has 2 to 4 children.
+        for (const q of nodeVisits.keys()) expect(children(packed, q).length).toBeGreaterThanOrEqual(q === BVH_ROOT_NODE && total === 1 ? 1 : 2);
         expect([...nodeVisits.values()].every((v) => v === 1)).toBe(true);
         expect(nodeVisits.size).toBe(packed.nodeCount);
         expect(triangleVisits.every((v) => v === 1)).toBe(true);
@@ -170,8 +167,8 @@ describe('BVH structure', () => {
     expect(blocks.size, 'a block of its own per textured triangle').toBe(90);
     // Triangles without uvs cost nothing: the nodes follow the attributes (from row 1: 3 texels per smooth triangle, 2 per textured one).
     const firstNode = (p: PackedBvh) => Math.min(...[...walk(p).nodeVisits.keys()].filter((q) => q !== BVH_ROOT_NODE)) * BVH_NODE_TEXELS;
-    expect(firstNode(packed)).toBe(Math.ceil((2048 + 70 * 3 + 90 * 2) / 4) * 4);
-    expect(firstNode(build(meshes.map((m) => ({ ...m, uvs: null }))))).toBe(Math.ceil((2048 + 70 * 3) / 4) * 4);
+    expect(firstNode(packed)).toBe(Math.ceil((2048 + 70 * 3 + 90 * 2) / 8) * 8);
+    expect(firstNode(build(meshes.map((m) => ({ ...m, uvs: null }))))).toBe(Math.ceil((2048 + 70 * 3) / 8) * 8);
   });
 
   it('packs the corners\' vertex colors of colored triangles (flat and smooth, with and without uvs) after their other attributes', () => {
@@ -214,16 +211,16 @@ describe('BVH structure', () => {
     // Texels per triangle: 3 normals (smooth), 2 uvs (textured, or flat and colored), 3 colors (colored).
     const texels = meshes.reduce((sum, m, i) => sum + counts[i] * ((m.normals ? 3 : 0) + (m.uvs || (m.colors && !m.normals) ? 2 : 0) + (m.colors ? 3 : 0)), 0);
     const firstNode = (p: PackedBvh) => Math.min(...[...walk(p).nodeVisits.keys()].filter((q) => q !== BVH_ROOT_NODE)) * BVH_NODE_TEXELS;
-    expect(firstNode(packed)).toBe(Math.ceil((2048 + texels) / 4) * 4);
+    expect(firstNode(packed)).toBe(Math.ceil((2048 + texels) / 8) * 8);
     // Without colors the layout is the uncolored one: nothing for them.
     const plain = meshes.map((m) => ({ ...m, colors: null }));
     const plainTexels = plain.reduce((sum, m, i) => sum + counts[i] * ((m.normals ? 3 : 0) + (m.uvs ? 2 : 0)), 0);
-    expect(firstNode(build(plain))).toBe(Math.ceil((2048 + plainTexels) / 4) * 4);
+    expect(firstNode(build(plain))).toBe(Math.ceil((2048 + plainTexels) / 8) * 8);
   });
 
   it('the triangle limits are the most whose texels end below 2^24, with and without vertex colors', () => {
     // Triangles 681 to a 2048-texel row (3 texels each), then 5 attribute texels each (3 normals, 2 uvs), 8 with colors (3 more).
-    const end = (n: number, attributes: number) => Math.ceil(n / 681) * 2048 + attributes * n;
+    const end = (n: number, attributes: number) => Math.ceil((n + 3) / 681) * 2048 + attributes * n;
     for (const [limit, attributes] of [[MAX_TRIANGLES, 5], [MAX_COLORED_TRIANGLES, 8]]) {
       expect(end(limit, attributes)).toBeLessThanOrEqual(2 ** 24);
       expect(end(limit + 1, attributes)).toBeGreaterThan(2 ** 24);
@@ -245,8 +242,9 @@ describe('BVH structure', () => {
     for (const mesh of [exponential, same]) {
       const packed = build([mesh]);
       const { triangleVisits, maxDepth } = walk(packed);
-      expect(maxDepth).toBeLessThanOrEqual(MAX_BVH_DEPTH);
-      expect(packed.depth).toBe(maxDepth);
+      expect(packed.depth).toBeLessThanOrEqual(MAX_BVH_DEPTH);
+      expect(maxDepth).toBeLessThanOrEqual(MAX_WIDE_STACK);
+      expect(packed.stackEntries).toBe(maxDepth);
       expect(triangleVisits.every((v) => v === 1)).toBe(true);
       const hit = traverseBvh(packed, [0.5, 0.1, 5], [0, 0, -1], Infinity);
       expect(hit?.t).toBe(bruteForce(packed, [0.5, 0.1, 5], [0, 0, -1], Infinity)?.t);

@@ -80,24 +80,31 @@
  * textured and colored.
  */
 import type { Bvh, BvhMeshInput } from './build';
+import { BVH_WIDTH, collapseBvh } from './wide';
 
 export const BVH_TEXTURE_WIDTH = 2048;
 export const BVH_LAYER_ROWS = 512;
-export const BVH_NODE_TEXELS = 4;
+/** A wide node's texels (6 of its children's boxes, 1 of references, 1 of counts). */
+export const BVH_NODE_TEXELS = 8;
 export const BVH_TRIANGLE_TEXELS = 3;
-/** Triangles per texture row: no 4-texel read from a triangle's first texel leaves its row. */
-export const BVH_ROW_TRIANGLES = Math.floor((BVH_TEXTURE_WIDTH - 1) / BVH_TRIANGLE_TEXELS) - 1;
-/** The root node: the last 4 texels of row 0. */
-export const BVH_ROOT_NODE = BVH_TEXTURE_WIDTH / BVH_NODE_TEXELS - 1;
+/** Triangles per texture row (2043 texels): an 8-texel read from the row's last triangle (column 2040) stays in the row. */
+export const BVH_ROW_TRIANGLES = Math.floor(BVH_TEXTURE_WIDTH / BVH_TRIANGLE_TEXELS) - 1;
+/** The root node: texels 0 .. 7 of row 0. */
+export const BVH_ROOT_NODE = 0;
+/** Triangle slots of row 0 the root takes (texels 0 .. 8): triangle j is in slot j + this. */
+export const BVH_FIRST_SLOT = Math.ceil(BVH_NODE_TEXELS / BVH_TRIANGLE_TEXELS);
 /** Texel indices are floats in the textures: exact below 2^24. */
 export const BVH_MAX_TEXELS = 2 ** 24;
 
 /** First texel of triangle j. */
-export const triangleTexel = (j: number): number => Math.floor(j / BVH_ROW_TRIANGLES) * BVH_TEXTURE_WIDTH + (j % BVH_ROW_TRIANGLES) * BVH_TRIANGLE_TEXELS;
+export const triangleTexel = (j: number): number => {
+  const slot = j + BVH_FIRST_SLOT;
+  return Math.floor(slot / BVH_ROW_TRIANGLES) * BVH_TEXTURE_WIDTH + (slot % BVH_ROW_TRIANGLES) * BVH_TRIANGLE_TEXELS;
+};
 /** The triangle whose first texel is `texel`. */
-export const triangleAt = (texel: number): number => Math.floor(texel / BVH_TEXTURE_WIDTH) * BVH_ROW_TRIANGLES + Math.floor((texel % BVH_TEXTURE_WIDTH) / BVH_TRIANGLE_TEXELS);
+export const triangleAt = (texel: number): number => Math.floor(texel / BVH_TEXTURE_WIDTH) * BVH_ROW_TRIANGLES + Math.floor((texel % BVH_TEXTURE_WIDTH) / BVH_TRIANGLE_TEXELS) - BVH_FIRST_SLOT;
 /** Where the attribute blocks start: the row after the triangles'. */
-const attributesStart = (triangles: number) => Math.max(1, Math.ceil(triangles / BVH_ROW_TRIANGLES)) * BVH_TEXTURE_WIDTH;
+const attributesStart = (triangles: number) => Math.ceil((triangles + BVH_FIRST_SLOT) / BVH_ROW_TRIANGLES) * BVH_TEXTURE_WIDTH;
 
 /** Texels of a triangle's attribute block: 3 of normals when smooth, 2 of texture coordinates when textured (or flat and colored), 3 of vertex colors when colored. */
 export const NORMAL_TEXELS = 3;
@@ -146,8 +153,10 @@ export interface PackedBvh {
   triangleCount: number;
   /** BVH triangle j -> input triangle id (the groups' meshes concatenated in input order). */
   triangleOrder: Uint32Array;
-  /** The deepest leaf's depth in the build (root = 0): the traversal stack never holds more entries. */
+  /** The deepest leaf's depth in the binary build (root = 0). */
   depth: number;
+  /** The most entries the traversal's stack can hold (wide.ts stackEntries): at most MAX_WIDE_STACK. */
+  stackEntries: number;
   /** Each group's root node (packBvhGroups); the first is BVH_ROOT_NODE. */
   roots: number[];
 }
@@ -185,39 +194,41 @@ export function packBvhGroups(groups: BvhGroup[]): PackedBvh {
   if (attributesEnd > BVH_MAX_TEXELS) {
     throw new Error(`${n} triangles exceed the BVH texture limit (${MAX_TRIANGLES} smooth textured triangles in total, ${MAX_COLORED_TRIANGLES} with vertex colors)`);
   }
-  // Stored nodes: the first group's root at BVH_ROOT_NODE, every other interior node (depth-first, group by group) from the first multiple of 4 texels after the attributes.
+  // Wide nodes: the first group's root at BVH_ROOT_NODE, every other (depth-first, group by group) from the first multiple of 8 texels after the attributes.
+  const wides = groups.map(({ bvh }) => collapseBvh(bvh));
   const firstSlot = Math.ceil(attributesEnd / BVH_NODE_TEXELS);
   let stored = 1;
-  const slots = groups.map(({ bvh }, g) => {
-    const slot = new Int32Array(bvh.nodeCount).fill(-1);
-    const rootIsLeaf = bvh.nodeData[1] > 0;
-    slot[0] = g === 0 ? BVH_ROOT_NODE : firstSlot + stored++ - 1;
-    for (let i = 1; i < bvh.nodeCount; i++) if (!(bvh.nodeData[i * 2 + 1] > 0)) slot[i] = firstSlot + stored++ - 1;
-    return { slot, rootIsLeaf };
+  const slotBase = wides.map((w, g) => {
+    const base = g === 0 ? firstSlot - 1 : firstSlot + stored - 1;
+    stored += w.nodeCount - (g === 0 ? 1 : 0);
+    return base;
   });
+  // Wide node w of group g: the root of group 0 at BVH_ROOT_NODE, others at base + w.
+  const slotOf = (g: number, w: number) => (g === 0 && w === 0 ? BVH_ROOT_NODE : slotBase[g] + w);
   const texture = bvhTexture(Math.max(attributesEnd, (firstSlot + stored - 1) * BVH_NODE_TEXELS));
   const out = texture.data;
 
   groups.forEach(({ bvh }, g) => {
     const { nodeBounds, nodeData } = bvh;
-    const { slot, rootIsLeaf } = slots[g];
-    const isLeaf = (i: number) => nodeData[i * 2 + 1] > 0;
-    const writeNode = (q: number, children: [number, number]) => {
-      const o = q * BVH_NODE_TEXELS * 4;
-      children.forEach((child, c) => {
-        for (let k = 0; k < 3; k++) {
-          out[o + c * 8 + k] = nodeBounds[child * 6 + k];
-          out[o + c * 8 + 4 + k] = nodeBounds[child * 6 + 3 + k];
+    const { children, nodeCount, wideOf } = wides[g];
+    for (let w = 0; w < nodeCount; w++) {
+      const o = slotOf(g, w) * BVH_NODE_TEXELS * 4;
+      for (let c = 0; c < BVH_WIDTH; c++) {
+        const child = children[w * BVH_WIDTH + c];
+        if (child < 0) {
+          out[o + 28 + c] = -1; // an empty slot
+          continue;
         }
-        const leaf = isLeaf(child);
-        const first = firstTriangle[g] + nodeData[child * 2];
+        // SoA: texel 2k holds the children's min along axis k, 2k + 1 their max.
+        for (let k = 0; k < 3; k++) {
+          out[o + 8 * k + c] = nodeBounds[child * 6 + k];
+          out[o + 8 * k + 4 + c] = nodeBounds[child * 6 + 3 + k];
+        }
         const count = nodeData[child * 2 + 1];
-        out[o + c * 4 + 3] = leaf ? triangleTexel(first) : slot[child]; // ref0, ref1 in texels 0, 1
-        out[o + 8 + c * 4 + 3] = leaf ? triangleTexel(first + count) : 0; // end0, end1 in texels 2, 3
-      });
-    };
-    if (rootIsLeaf) writeNode(slot[0], [0, 0]);
-    for (let i = 0; i < bvh.nodeCount; i++) if (!isLeaf(i)) writeNode(slot[i], [i + 1, nodeData[i * 2]]);
+        out[o + 24 + c] = count > 0 ? triangleTexel(firstTriangle[g] + nodeData[child * 2]) : slotOf(g, wideOf[child]);
+        out[o + 28 + c] = count;
+      }
+    }
   });
 
   const triangleOrder = new Uint32Array(n);
@@ -255,9 +266,10 @@ export function packBvhGroups(groups: BvhGroup[]): PackedBvh {
     }
     firstInput += meshOf[meshes.length];
   });
-  const roots = slots.map((s) => s.slot[0]);
+  const roots = groups.map((_, g) => slotOf(g, 0));
   const depth = groups.reduce((d, g) => Math.max(d, g.bvh.depth), 0);
-  return { texture, nodeCount: stored, triangleCount: n, triangleOrder, depth, roots };
+  const stackEntries = wides.reduce((d, w) => Math.max(d, w.stackEntries), 0);
+  return { texture, nodeCount: stored, triangleCount: n, triangleOrder, depth, stackEntries, roots };
 }
 
 /** The mesh holding input triangle `id`; starts from the last answer (ids often come in runs). */
@@ -276,5 +288,6 @@ function findMesh(meshOf: Uint32Array, id: number, guess: number): number {
 /** The box around everything: the union of the root's children's boxes (min xyz, max xyz). */
 export function bvhBounds(packed: PackedBvh): [number[], number[]] {
   const d = packed.texture.data.subarray(BVH_ROOT_NODE * BVH_NODE_TEXELS * 4);
-  return [[0, 1, 2].map((k) => Math.min(d[k], d[8 + k])), [0, 1, 2].map((k) => Math.max(d[4 + k], d[12 + k]))];
+  const used = [0, 1, 2, 3].filter((c) => d[28 + c] >= 0);
+  return [[0, 1, 2].map((k) => Math.min(...used.map((c) => d[8 * k + c]))), [0, 1, 2].map((k) => Math.max(...used.map((c) => d[8 * k + 4 + c])))];
 }

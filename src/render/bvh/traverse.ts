@@ -1,11 +1,12 @@
 /**
  * A TypeScript mirror of src/shaders/scene/bvh.glsl over the packed texture
- * data: the same layout, the same steps (one node or one triangle each),
+ * data: the same layout, the same steps (one wide node, or two triangles of a leaf, each),
  * nearest-child-first order, fixed-size stack, conservative slab test and
  * watertight ray-triangle test (Woop, Benthin and Wald, JCGT 2013). Tests
  * compare it with brute force and with the GLSL.
  */
-import { BVH_NODE_TEXELS, BVH_ROOT_NODE, triangleAt, triangleTexel, type PackedBvh } from './pack';
+import { BVH_NODE_TEXELS, BVH_ROOT_NODE, BVH_ROW_TRIANGLES, BVH_TEXTURE_WIDTH, triangleAt, triangleTexel, type PackedBvh } from './pack';
+import { MAX_WIDE_STACK } from './wide';
 
 export type Vec3 = readonly [number, number, number];
 
@@ -83,7 +84,7 @@ export function safeInverse(dir: Vec3): Vec3 {
   return dir.map((d) => (Object.is(d, -0) || d < 0 ? -1 : 1) / Math.max(Math.abs(d), 1e-30)) as unknown as Vec3;
 }
 
-/** Work of one traversal (bench/bvh-stats.ts): per loop step 0 for a node, 1 for a triangle; and stack pops. */
+/** Work of one traversal (bench/bvh-stats.ts): per loop step 0 for a node, else the triangles it tested (1 or 2); and stack pops. */
 export interface TraceStats {
   steps: number[];
   pops: number;
@@ -96,64 +97,90 @@ export function traceStats(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: num
   return stats;
 }
 
+/** Column of a row's last triangle (bvh.glsl: its pair is zero padding). */
+const LAST_COLUMN = (BVH_ROW_TRIANGLES - 1) * 3;
+
 /**
  * Closest hit (anyHit false) or the first hit found (anyHit true) before
- * tMax; null when none. Each step tests one triangle, while a leaf's range
- * lasts, or else visits one node: both children's boxes, a hit leaf's
- * triangles becoming the range (both leaves: their joint range), a hit
- * child node the next node (both: the nearer, the other pushed); with
- * nothing left, the next node is popped. `root`: the group's root node
- * (packed.roots; the first group's by default).
+ * tMax; null when none. The current item is a node or a leaf's pending
+ * triangles. A triangle step tests the next two (one at a row's end); a
+ * node step tests the 4 children's boxes, sorts them by entry distance,
+ * farthest first and the missed ones last (the GLSL's sorting network, so
+ * ties go the same way), and pushes the hit ones: the nearest is on top.
+ * With no current item, one is popped (after every node step). `root`: the
+ * group's root node (packed.roots; the first group's by default).
  */
 export function traverseBvh(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: number, anyHit = false, stats?: TraceStats, root = BVH_ROOT_NODE): BvhHit | null {
   const tex = packed.texture.data;
   const invDir = safeInverse(dir);
   const ray = shearRay(origin, dir);
-  const stack: number[] = [];
+  const stack: Item[] = [];
   let best: BvhHit | null = null;
   let limit = tMax;
-  let node = root;
-  let triangle = 0;
-  let end = 0; // triangles [triangle, end) pending
-  while (node >= 0 || triangle < end) {
-    if (triangle < end) {
-      stats?.steps.push(1);
-      const hit = intersectTriangle(tex, triangle, ray, limit);
-      triangle++;
-      if (hit) {
-        best = hit;
-        limit = hit.t;
-        if (anyHit) return best;
+  let item: Item | null = { node: root };
+  while (item) {
+    if ('texel' in item) {
+      const j = triangleAt(item.texel);
+      const lastOfRow = item.texel % BVH_TEXTURE_WIDTH === LAST_COLUMN;
+      const tested: number = lastOfRow ? 1 : Math.min(2, item.count);
+      stats?.steps.push(tested);
+      for (let k = 0; k < tested; k++) {
+        const hit = intersectTriangle(tex, j + k, ray, limit);
+        if (hit) {
+          best = hit;
+          limit = hit.t;
+          if (anyHit) return best;
+        }
       }
+      const count: number = item.count - (lastOfRow ? 1 : 2);
+      item = count > 0 ? { texel: triangleTexel(j + tested), count } : null;
     } else {
       stats?.steps.push(0);
-      const o = node * BVH_NODE_TEXELS * 4;
-      const t0 = boxEntry(tex, o, o + 4, origin, invDir, limit);
-      const t1 = boxEntry(tex, o + 8, o + 12, origin, invDir, limit);
-      const [ref0, ref1, end0, end1] = [tex[o + 3], tex[o + 7], tex[o + 11], tex[o + 15]];
-      const leaf0 = t0 < Infinity && end0 > 0;
-      const leaf1 = t1 < Infinity && end1 > 0;
-      const inner0 = t0 < Infinity && end0 === 0;
-      const inner1 = t1 < Infinity && end1 === 0;
-      if (leaf0 || leaf1) {
-        // Texels of the first triangle and of the one after the last; both leaves: the joint range.
-        triangle = triangleAt(leaf0 ? (leaf1 ? Math.min(ref0, ref1) : ref0) : ref1);
-        end = triangleAt(leaf0 ? (leaf1 ? Math.max(end0, end1) : end0) : end1);
-      }
-      node = -1;
-      if (inner0 && inner1) {
-        if (stack.length >= packed.depth) throw new Error('BVH stack overflow');
-        stack.push(t0 <= t1 ? ref1 : ref0);
-        node = t0 <= t1 ? ref0 : ref1;
-      } else if (inner0) node = ref0;
-      else if (inner1) node = ref1;
+      for (const hit of nodeHits(tex, item.node, origin, invDir, limit)) stack.push(hit);
+      if (stack.length > MAX_WIDE_STACK + 1) throw new Error('BVH stack overflow');
+      item = null;
     }
-    if (node < 0 && stack.length > 0) {
-      node = stack.pop()!;
+    if (!item && stack.length > 0) {
+      item = stack.pop()!;
       if (stats) stats.pops++;
     }
   }
   return best;
+}
+
+/** A traversal item: a node, or a leaf's triangles from `texel` (`count` of them). */
+type Item = { node: number } | { texel: number; count: number };
+
+/** The comparators of bvh.glsl's sorting network (bvhOrder: the second goes first only when strictly farther). */
+export const SORT_NETWORK = [
+  [0, 1],
+  [2, 3],
+  [0, 2],
+  [1, 3],
+  [1, 2],
+] as const;
+
+/** Node q's children whose boxes the ray enters before tMax, farthest first (bvh.glsl's sorting network). */
+function nodeHits(tex: Float32Array, q: number, origin: Vec3, invDir: Vec3, tMax: number): Item[] {
+  const o = q * BVH_NODE_TEXELS * 4;
+  const entries = [0, 1, 2, 3].map((c) => {
+    const count = tex[o + 28 + c];
+    let enter = 0;
+    let exit = tMax;
+    for (let k = 0; k < 3; k++) {
+      const t0 = (tex[o + 8 * k + c] - origin[k]) * invDir[k];
+      const t1 = (tex[o + 8 * k + 4 + c] - origin[k]) * invDir[k];
+      enter = Math.max(enter, Math.min(t0, t1));
+      exit = Math.min(exit, Math.max(t0, t1));
+    }
+    const hit = count >= 0 && enter <= exit * BOX_EXIT_SCALE;
+    const ref = tex[o + 24 + c];
+    return { key: hit ? enter : -1, item: (count > 0 ? { texel: ref, count } : { node: ref }) as Item };
+  });
+  for (const [a, b] of SORT_NETWORK) {
+    if (entries[b].key > entries[a].key) [entries[a], entries[b]] = [entries[b], entries[a]];
+  }
+  return entries.filter((e) => e.key >= 0).map((e) => e.item);
 }
 
 /** Every triangle tested (or only triangle `only`): the reference for traverseBvh. */

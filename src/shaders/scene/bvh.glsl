@@ -49,13 +49,19 @@
 #define BVH_LAYER_ROWS_LOG2 9
 #endif
 #ifndef BVH_STACK_SIZE
-#define BVH_STACK_SIZE 32
+#define BVH_STACK_SIZE 64
 #endif
 #ifndef BVH_ROW_TRIANGLES
 #define BVH_ROW_TRIANGLES 681
 #endif
 #ifndef BVH_ROOT_NODE
-#define BVH_ROOT_NODE 511
+#define BVH_ROOT_NODE 0
+#endif
+#ifndef BVH_FIRST_SLOT
+#define BVH_FIRST_SLOT 3
+#endif
+#ifndef BVH_NODE_TEXELS
+#define BVH_NODE_TEXELS 8
 #endif
 #ifndef HAS_INSTANCES
 #define HAS_INSTANCES 0
@@ -101,17 +107,6 @@ vec4 bvhTexel(highp sampler2DArray map, int i) {
   return texelFetch(map, ivec3(i & columns, (i >> BVH_TEXTURE_WIDTH_LOG2) & rows, i >> (BVH_TEXTURE_WIDTH_LOG2 + BVH_LAYER_ROWS_LOG2)), 0);
 }
 
-// Entry distance into the box (lo, hi), or BVH_NO_HIT when the ray misses it before tMax.
-float bvhBoxEntry(vec3 lo, vec3 hi, vec3 origin, vec3 invDir, float tMax) {
-  vec3 t0 = (lo - origin) * invDir;
-  vec3 t1 = (hi - origin) * invDir;
-  vec3 near = min(t0, t1);
-  vec3 far = max(t0, t1);
-  float enter = max(max(near.x, near.y), max(near.z, 0.0));
-  float exit = min(min(far.x, far.y), min(far.z, tMax));
-  return enter <= exit * BVH_BOX_EXIT_SCALE ? enter : BVH_NO_HIT;
-}
-
 // The watertight test's per-ray transform: (p - origin) * shear = (x, y) in
 // the plane across the ray, z along it scaled so that z = t on the ray.
 mat3 bvhShear(vec3 dir) {
@@ -131,12 +126,8 @@ mat3 bvhShear(vec3 dir) {
   return mat3(ex - (dot(dir, ex) / dz) * ez, ey - (dot(dir, ey) / dz) * ez, ez / dz);
 }
 
-int bvhTriangleTexel(int j) {
-  return (j / BVH_ROW_TRIANGLES << BVH_TEXTURE_WIDTH_LOG2) + j % BVH_ROW_TRIANGLES * 3;
-}
-
-// The 4 texels from texel i (i % 2048 <= 2044: they share a row).
-void bvhTexels4(int i, out vec4 t0, out vec4 t1, out vec4 t2, out vec4 t3) {
+// The 8 texels from texel i (i % 2048 <= 2040: they share a row).
+void bvhTexels8(int i, out vec4 t0, out vec4 t1, out vec4 t2, out vec4 t3, out vec4 t4, out vec4 t5, out vec4 t6, out vec4 t7) {
   const int columns = (1 << BVH_TEXTURE_WIDTH_LOG2) - 1;
   const int rows = (1 << BVH_LAYER_ROWS_LOG2) - 1;
   ivec3 at = ivec3(i & columns, (i >> BVH_TEXTURE_WIDTH_LOG2) & rows, i >> (BVH_TEXTURE_WIDTH_LOG2 + BVH_LAYER_ROWS_LOG2));
@@ -144,6 +135,15 @@ void bvhTexels4(int i, out vec4 t0, out vec4 t1, out vec4 t2, out vec4 t3) {
   t1 = texelFetchOffset(uBvh, at, 0, ivec2(1, 0));
   t2 = texelFetchOffset(uBvh, at, 0, ivec2(2, 0));
   t3 = texelFetchOffset(uBvh, at, 0, ivec2(3, 0));
+  t4 = texelFetchOffset(uBvh, at, 0, ivec2(4, 0));
+  t5 = texelFetchOffset(uBvh, at, 0, ivec2(5, 0));
+  t6 = texelFetchOffset(uBvh, at, 0, ivec2(6, 0));
+  t7 = texelFetchOffset(uBvh, at, 0, ivec2(7, 0));
+}
+
+int bvhTriangleTexel(int j) {
+  int slot = j + BVH_FIRST_SLOT;
+  return (slot / BVH_ROW_TRIANGLES << BVH_TEXTURE_WIDTH_LOG2) + slot % BVH_ROW_TRIANGLES * 3;
 }
 
 // The watertight test's edge functions of triangle (v0, v1, v2) in ray space
@@ -158,77 +158,124 @@ vec3 bvhEdges(vec3 v0, vec3 v1, vec3 v2, vec3 origin, mat3 shear, out float tSca
   return e;
 }
 
+// t of the ray on triangle (v0, v1, v2) when it hits it, else -1.
+float bvhTriangleT(vec3 v0, vec3 v1, vec3 v2, vec3 origin, mat3 shear) {
+  float tScaled;
+  vec3 e = bvhEdges(v0, v1, v2, origin, shear, tScaled);
+  float det = e.x + e.y + e.z;
+  float t = tScaled / det;
+  bool inside = !(any(lessThan(e, vec3(0.0))) && any(greaterThan(e, vec3(0.0))));
+  return inside && det != 0.0 && t > 0.0 ? t : -1.0;
+}
+
+// (a, ia) and (b, ib) in descending order of a (b first only when strictly
+// farther): a comparator of the sorting network, selects only.
+void bvhOrder(inout float a, inout int ia, inout float b, inout int ib) {
+  bool swap = b > a;
+  float farther = max(a, b), nearer = min(a, b);
+  int first = swap ? ib : ia, second = swap ? ia : ib;
+  a = farther;
+  b = nearer;
+  ia = first;
+  ib = second;
+}
+
 // Closest hit before tMax (anyHit false), or the first found (anyHit true:
 // shadow rays), in the BVH whose root node is `root` (BVH_ROOT_NODE, or a
 // group's root: scene/instances.glsl). `dir` need not be unit: t is in its units.
 // The traversal itself: the first texel of the closest triangle hit before
 // `best` (or the first found, anyHit), -1 for none; `best` becomes its t.
 // `shear` is bvhShear(dir).
+// Items (the current one and the stack's): a node q >= 0, a leaf's pending
+// triangles -2 - (texel * 16 + count) (texel: the next one's first), none -1.
+// Every choice in the loop is a ternary of names and constants (a select,
+// not an if/else: SwiftShader's compile time doubles with each if/else in a
+// loop, see pick() in common/math.glsl), and there is no early exit.
 int bvhFindTexel(int root, vec3 origin, vec3 dir, mat3 shear, bool anyHit, inout float best) {
   // Zero direction components become huge (same sign): no 0 * inf = NaN in the slab test.
   vec3 invDir = (vec3(greaterThanEqual(dir, vec3(0.0))) * 2.0 - 1.0) / max(abs(dir), vec3(1e-30));
+  const int columnMask = (1 << BVH_TEXTURE_WIDTH_LOG2) - 1;
+  const int lastColumn = 3 * BVH_ROW_TRIANGLES - 3;
   int bestTexel = -1;
-  int stack[BVH_STACK_SIZE];
+  // A node step writes its 4 children at sp .. sp + 3 (the hit ones count).
+  int stack[BVH_STACK_SIZE + 4];
   int sp = 0;
-  int node = root;                  // the next node to visit; -1: none
-  int triangle = 0, triangleEnd = 0; // pending triangles: texels triangle, the next, .. < triangleEnd
+  int item = root;
   do {
-    bool isTriangle = triangle < triangleEnd;
-    // Every choice below is a ternary of names and constants: a select, not
-    // an if/else (SwiftShader's compile time doubles with each if/else in a
-    // loop: see pick() in common/math.glsl).
-    int nodeTexel = 4 * max(node, 0);
-    int texel = isTriangle ? triangle : nodeTexel;
-    vec4 t0, t1, t2, t3;
-    bvhTexels4(texel, t0, t1, t2, t3);
+    bool isTriangle = item < -1;
+    int leaf = -2 - item;
+    int leafTexel = leaf >> 4;
+    int nodeTexel = BVH_NODE_TEXELS * item;
+    int texel = isTriangle ? leafTexel : nodeTexel;
+    vec4 t0, t1, t2, t3, t4, t5, t6, t7;
+    bvhTexels8(texel, t0, t1, t2, t3, t4, t5, t6, t7);
 
-    // As a triangle: the watertight test (the barycentrics: bvhHitAt).
-    float tScaled;
-    vec3 e = bvhEdges(t0.xyz, t1.xyz, t2.xyz, origin, shear, tScaled);
-    float det = e.x + e.y + e.z;
-    float t = tScaled / det;
-    bool inside = !(any(lessThan(e, vec3(0.0))) && any(greaterThan(e, vec3(0.0))));
-    bool found = isTriangle && inside && det != 0.0 && t > 0.0 && t < best;
-    best = found ? t : best;
-    bestTexel = found ? texel : bestTexel;
-    // The next triangle: 3 texels on, or the next row's first after a row's last (at column 2040).
-    const int nextRowStep = 3 + (1 << BVH_TEXTURE_WIDTH_LOG2) - 3 * BVH_ROW_TRIANGLES;
-    bool rowEnd = (triangle & ((1 << BVH_TEXTURE_WIDTH_LOG2) - 1)) >= 3 * BVH_ROW_TRIANGLES - 3;
-    int triangleStep = rowEnd ? nextRowStep : 3;
-    triangle += isTriangle ? triangleStep : 0;
+    // As triangles: the next two of the leaf (the barycentrics: bvhHitAt). A
+    // row's last triangle's pair is the row's zero padding: never hit.
+    int count = leaf & 15;
+    float tA = bvhTriangleT(t0.xyz, t1.xyz, t2.xyz, origin, shear);
+    float tB = bvhTriangleT(t3.xyz, t4.xyz, t5.xyz, origin, shear);
+    bool foundA = isTriangle && tA > 0.0 && tA < best;
+    best = foundA ? tA : best;
+    bool foundB = isTriangle && count >= 2 && tB > 0.0 && tB < best;
+    best = foundB ? tB : best;
+    int texelB = texel + 3;
+    int texelA = foundA ? texel : bestTexel;
+    bestTexel = foundB ? texelB : texelA;
+    bool found = foundA || foundB;
+    // The leaf's rest: 6 texels on, or the next row's first after a row's last two (or last one).
+    int column = texel & columnMask;
+    int nextRow = (texel | columnMask) + 1;
+    int nextPair = texel + 6;
+    int nextTexel = column >= lastColumn - 3 ? nextRow : nextPair;
+    int tested = column == lastColumn ? 1 : 2;
+    int left = count - tested;
+    int rest = -2 - (nextTexel << 4 | left);
+    int triangleItem = left > 0 ? rest : -1;
 
-    // As a node: both children's boxes.
-    float enter0 = bvhBoxEntry(t0.xyz, t1.xyz, origin, invDir, best);
-    float enter1 = bvhBoxEntry(t2.xyz, t3.xyz, origin, invDir, best);
-    int ref0 = int(t0.w), ref1 = int(t1.w), end0 = int(t2.w), end1 = int(t3.w);
-    bool hit0 = !isTriangle && enter0 < BVH_NO_HIT;
-    bool hit1 = !isTriangle && enter1 < BVH_NO_HIT;
-    bool leaf0 = hit0 && end0 > 0, leaf1 = hit1 && end1 > 0;
-    bool inner0 = hit0 && end0 == 0, inner1 = hit1 && end1 == 0;
-    int firstOfBoth = min(ref0, ref1), endOfBoth = max(end0, end1);
-    int firstWith0 = leaf1 ? firstOfBoth : ref0, endWith0 = leaf1 ? endOfBoth : end0;
-    int firstWithout0 = leaf1 ? ref1 : triangle, endWithout0 = leaf1 ? end1 : triangleEnd;
-    triangle = leaf0 ? firstWith0 : firstWithout0;
-    triangleEnd = leaf0 ? endWith0 : endWithout0;
-    bool nearFirst = enter0 <= enter1;
-    stack[min(sp, BVH_STACK_SIZE - 1)] = nearFirst ? ref1 : ref0; // kept only when both are nodes
-    sp += inner0 && inner1 ? 1 : 0;
-    int nearer = nearFirst ? ref0 : ref1;
-    int onlyInner = inner1 ? ref1 : -1;
-    int oneInner = inner0 ? ref0 : onlyInner;
-    int next = inner0 && inner1 ? nearer : oneInner;
-    node = isTriangle ? node : next;
-
-    // Nothing to visit next: pop.
-    bool pop = node < 0 && sp > 0;
-    int top = stack[max(sp - 1, 0)];
-    node = pop ? top : node;
-    sp -= pop ? 1 : 0;
+    // As a node: the 4 children's boxes (texels 0 .. 5: min x, max x, min y, ..),
+    // references (6) and counts (7: a leaf's triangles, 0 a node, -1 empty).
+    vec4 x0 = (t0 - origin.x) * invDir.x, x1 = (t1 - origin.x) * invDir.x;
+    vec4 y0 = (t2 - origin.y) * invDir.y, y1 = (t3 - origin.y) * invDir.y;
+    vec4 z0 = (t4 - origin.z) * invDir.z, z1 = (t5 - origin.z) * invDir.z;
+    vec4 enter = max(max(min(x0, x1), min(y0, y1)), max(min(z0, z1), vec4(0.0)));
+    vec4 exit = min(min(max(x0, x1), max(y0, y1)), min(max(z0, z1), vec4(best)));
+    vec4 inBox = vec4(lessThanEqual(enter, exit * BVH_BOX_EXIT_SCALE));
+    vec4 used = vec4(greaterThanEqual(t7, vec4(0.0)));
+    float isNode = isTriangle ? 0.0 : 1.0;
+    vec4 hit = inBox * used * isNode;
+    // Sort keys: the entry distance, -1 for a child not hit (sorted last).
+    vec4 d = mix(vec4(-1.0), enter, greaterThan(hit, vec4(0.0)));
+    ivec4 ref = ivec4(t6), n = ivec4(t7);
+    ivec4 leaves = -2 - (ref << 4 | n);
+    float d0 = d.x, d1 = d.y, d2 = d.z, d3 = d.w;
+    int i0 = n.x > 0 ? leaves.x : ref.x, i1 = n.y > 0 ? leaves.y : ref.y;
+    int i2 = n.z > 0 ? leaves.z : ref.z, i3 = n.w > 0 ? leaves.w : ref.w;
+    bvhOrder(d0, i0, d1, i1);
+    bvhOrder(d2, i2, d3, i3);
+    bvhOrder(d0, i0, d2, i2);
+    bvhOrder(d1, i1, d3, i3);
+    bvhOrder(d1, i1, d2, i2);
+    int hits = int(dot(hit, vec4(1.0)));
+    // All 4 written, the hit ones (the farthest deepest) kept; the nearest is
+    // popped next. On a triangle step the writes land above the top.
+    stack[sp] = i0;
+    stack[sp + 1] = i1;
+    stack[sp + 2] = i2;
+    stack[sp + 3] = i3;
+    sp += hits;
+    item = isTriangle ? triangleItem : -1;
 
     // A shadow ray is done at its first hit.
-    node = anyHit && found ? -1 : node;
-    triangleEnd = anyHit && found ? 0 : triangleEnd;
-  } while (node >= 0 || triangle < triangleEnd);
+    bool done = anyHit && found;
+    item = done ? -1 : item;
+    sp = done ? 0 : sp;
+    // Nothing to visit next: pop.
+    bool pop = item == -1 && sp > 0;
+    int top = stack[max(sp - 1, 0)];
+    item = pop ? top : item;
+    sp -= pop ? 1 : 0;
+  } while (item != -1);
   return bestTexel;
 }
 
@@ -236,9 +283,9 @@ int bvhFindTexel(int root, vec3 origin, vec3 dir, mat3 shear, bool anyHit, inout
 // barycentrics, computed once after the traversal (kept per step, they cost
 // SwiftShader's compiler 0.8 s more for the trace shader).
 BvhHit bvhHitAt(int texel, float t, vec3 origin, mat3 shear) {
-  int triangleIndex = (texel >> BVH_TEXTURE_WIDTH_LOG2) * BVH_ROW_TRIANGLES + (texel & ((1 << BVH_TEXTURE_WIDTH_LOG2) - 1)) / 3;
-  vec4 v0, v1, v2, v3;
-  bvhTexels4(max(texel, 0), v0, v1, v2, v3);
+  int triangleIndex = (texel >> BVH_TEXTURE_WIDTH_LOG2) * BVH_ROW_TRIANGLES + (texel & ((1 << BVH_TEXTURE_WIDTH_LOG2) - 1)) / 3 - BVH_FIRST_SLOT;
+  int at = max(texel, 0);
+  vec4 v0 = bvhTexel(uBvh, at), v1 = bvhTexel(uBvh, at + 1), v2 = bvhTexel(uBvh, at + 2);
   float tScaled;
   vec3 e = bvhEdges(v0.xyz, v1.xyz, v2.xyz, origin, shear, tScaled);
   int index = texel < 0 ? -1 : triangleIndex;
