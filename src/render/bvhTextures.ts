@@ -6,7 +6,7 @@
  */
 import type { Program } from './gl/program';
 import { createDataTextureArray } from './gl/dataTexture';
-import { BVH_FIRST_SLOT, BVH_LAYER_ROWS, BVH_NODE_TEXELS, BVH_ROOT_NODE, BVH_ROW_TRIANGLES, BVH_TEXTURE_WIDTH, type PackedBvh } from './bvh/pack';
+import { BVH_CODE_BIAS, BVH_FIRST_SLOT, BVH_LAYER_ROWS, BVH_ROOT_NODE, BVH_ROW_TRIANGLES, BVH_TEXTURE_WIDTH, type PackedBvh } from './bvh/pack';
 import { MAX_WIDE_STACK } from './bvh/wide';
 
 /** The #defines bvh.glsl expects (its defaults equal these; pass them to keep TS and GLSL in one place). */
@@ -18,7 +18,7 @@ export function bvhDefines(): Record<string, number> {
     BVH_ROW_TRIANGLES,
     BVH_ROOT_NODE,
     BVH_FIRST_SLOT,
-    BVH_NODE_TEXELS,
+    BVH_CODE_BIAS,
   };
 }
 

@@ -10,7 +10,7 @@ import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
 import { groupMeshes, INSTANCE_MIN_SAVED_TRIANGLES, MAX_INSTANCES, storedTriangles } from '../../src/render/bvh/groups';
 import { buildBvh, type BvhMeshInput } from '../../src/render/bvh/build';
-import { BVH_NODE_TEXELS, packBvh, packBvhGroups, triangleAt, type PackedBvh } from '../../src/render/bvh/pack';
+import { nodeChildren, packBvh, packBvhGroups, triangleAt, type PackedBvh } from '../../src/render/bvh/pack';
 import { bruteForce, traverseBvh, type Vec3 } from '../../src/render/bvh/traverse';
 import { buildAndPackGroups } from '../../src/render/bvh/worker';
 import { bvhInputs } from '../../src/render/geometry/world';
@@ -84,11 +84,11 @@ function trianglesUnder(packed: PackedBvh, root: number): Set<number> {
   const stack = [root];
   while (stack.length) {
     const q = stack.pop()!;
-    for (let c = 0; c < 4; c++) {
-      const o = q * BVH_NODE_TEXELS * 4;
-      const [ref, count] = [d[o + 24 + c], d[o + 28 + c]];
+    for (const child of nodeChildren(d, q)) {
+      if (!child) continue;
+      const { ref, count } = child;
       if (count > 0) for (let t = triangleAt(ref); t < triangleAt(ref) + count; t++) found.add(t);
-      else if (count === 0) stack.push(ref);
+      else stack.push(ref);
     }
   }
   return found;

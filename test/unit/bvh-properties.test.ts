@@ -11,7 +11,7 @@ import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
 import { buildBvh, MAX_BVH_DEPTH, type BvhMeshInput } from '../../src/render/bvh/build';
 import { MAX_WIDE_STACK } from '../../src/render/bvh/wide';
-import { BVH_NODE_TEXELS, BVH_ROOT_NODE, MAX_COLORED_TRIANGLES, MAX_TRIANGLES, packBvh, triangleAt, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
+import { BVH_NODE_TEXELS, BVH_ROOT_NODE, MAX_COLORED_TRIANGLES, MAX_TRIANGLES, nodeChildren, packBvh, triangleAt, triangleTexel, type PackedBvh } from '../../src/render/bvh/pack';
 import { bruteForce, colorTexel, hitColor, hitUv, traverseBvh, uvTexel, type Vec3 } from '../../src/render/bvh/traverse';
 import { decodeMesh } from '../../src/scene/mesh';
 import { icosphere } from '../support/icosphere';
@@ -21,20 +21,14 @@ function build(meshes: BvhMeshInput[]): PackedBvh {
   return packBvh(buildBvh(meshes), meshes);
 }
 
-/** The children of stored node q: box (lo, hi), and a leaf's triangles (first `ref`, `count`) or a child node (`ref`, count 0); empty slots left out. */
+/** The children of the node at texel q: box (lo, hi), and a leaf's triangles (first `ref`, `count`) or a child node (`ref`, count 0); empty slots left out. */
 function children(packed: PackedBvh, q: number) {
-  const d = packed.texture.data;
-  const o = q * BVH_NODE_TEXELS * 4;
-  return [0, 1, 2, 3].filter((c) => d[o + 28 + c] >= 0).map((c) => {
-    const [ref, count] = [d[o + 24 + c], d[o + 28 + c]];
-    if (count > 0) expect(triangleTexel(triangleAt(ref)), `node ${q}: a leaf starts at a triangle's first texel`).toBe(ref);
-    return {
-      lo: [0, 1, 2].map((k) => d[o + 8 * k + c]),
-      hi: [0, 1, 2].map((k) => d[o + 8 * k + 4 + c]),
-      ref: count > 0 ? triangleAt(ref) : ref,
-      count,
-    };
-  });
+  return nodeChildren(packed.texture.data, q)
+    .filter((c) => c !== null)
+    .map((c) => {
+      if (c.count > 0) expect(triangleTexel(triangleAt(c.ref)), `node ${q}: a leaf starts at a triangle's first texel`).toBe(c.ref);
+      return { lo: c.lo, hi: c.hi, ref: c.count > 0 ? triangleAt(c.ref) : c.ref, count: c.count };
+    });
 }
 
 /** Walks the packed tree; returns how often each stored node and each triangle is reached, and the most stack entries a path needs (one per child but one of each wide node on it). */
@@ -100,9 +94,11 @@ describe('BVH structure', () => {
         const packed = build(meshes);
         const total = meshes.reduce((s, m) => s + m.indices.length / 3, 0);
         expect(packed.triangleCount).toBe(total);
-        // No 8-texel read from a triangle's first texel leaves its row, nor reads the root (texels 0 .. 7).
-        for (let j = 0; j < total; j++) expect(triangleTexel(j) % 2048).toBeLessThanOrEqual(2040);
-        for (let j = 0; j < total; j++) expect(triangleTexel(j)).toBeGreaterThanOrEqual(8);
+        // No 7-texel read from a triangle's first texel leaves its row, nor overlaps the root (texels 0 .. 6).
+        for (let j = 0; j < total; j++) expect(triangleTexel(j) % 2048).toBeLessThanOrEqual(2048 - BVH_NODE_TEXELS);
+        for (let j = 0; j < total; j++) expect(triangleTexel(j)).toBeGreaterThanOrEqual(BVH_NODE_TEXELS);
+        // No node straddles a row.
+        for (const q of walk(packed).nodeVisits.keys()) expect(q % 2048).toBeLessThanOrEqual(2048 - BVH_NODE_TEXELS);
         const { nodeVisits, triangleVisits } = walk(packed);
         // Every node but a leaf root has 2 to 4 children.
         for (const q of nodeVisits.keys()) expect(children(packed, q).length).toBeGreaterThanOrEqual(q === BVH_ROOT_NODE && total === 1 ? 1 : 2);
@@ -165,10 +161,10 @@ describe('BVH structure', () => {
       }
     }
     expect(blocks.size, 'a block of its own per textured triangle').toBe(90);
-    // Triangles without uvs cost nothing: the nodes follow the attributes (from row 1: 3 texels per smooth triangle, 2 per textured one).
-    const firstNode = (p: PackedBvh) => Math.min(...[...walk(p).nodeVisits.keys()].filter((q) => q !== BVH_ROOT_NODE)) * BVH_NODE_TEXELS;
-    expect(firstNode(packed)).toBe(Math.ceil((2048 + 70 * 3 + 90 * 2) / 8) * 8);
-    expect(firstNode(build(meshes.map((m) => ({ ...m, uvs: null }))))).toBe(Math.ceil((2048 + 70 * 3) / 8) * 8);
+    // Triangles without uvs cost nothing: the nodes follow the attributes (from row 1: 3 texels per smooth triangle, 2 per textured one), from the next row.
+    const firstNode = (p: PackedBvh) => Math.min(...[...walk(p).nodeVisits.keys()].filter((q) => q !== BVH_ROOT_NODE));
+    expect(firstNode(packed)).toBe(Math.ceil((2048 + 70 * 3 + 90 * 2) / 2048) * 2048);
+    expect(firstNode(build(meshes.map((m) => ({ ...m, uvs: null }))))).toBe(Math.ceil((2048 + 70 * 3) / 2048) * 2048);
   });
 
   it('packs the corners\' vertex colors of colored triangles (flat and smooth, with and without uvs) after their other attributes', () => {
@@ -210,12 +206,12 @@ describe('BVH structure', () => {
     expect(blocks.size, 'a color block of its own per colored triangle').toBe(colored);
     // Texels per triangle: 3 normals (smooth), 2 uvs (textured, or flat and colored), 3 colors (colored).
     const texels = meshes.reduce((sum, m, i) => sum + counts[i] * ((m.normals ? 3 : 0) + (m.uvs || (m.colors && !m.normals) ? 2 : 0) + (m.colors ? 3 : 0)), 0);
-    const firstNode = (p: PackedBvh) => Math.min(...[...walk(p).nodeVisits.keys()].filter((q) => q !== BVH_ROOT_NODE)) * BVH_NODE_TEXELS;
-    expect(firstNode(packed)).toBe(Math.ceil((2048 + texels) / 8) * 8);
+    const firstNode = (p: PackedBvh) => Math.min(...[...walk(p).nodeVisits.keys()].filter((q) => q !== BVH_ROOT_NODE));
+    expect(firstNode(packed)).toBe(Math.ceil((2048 + texels) / 2048) * 2048);
     // Without colors the layout is the uncolored one: nothing for them.
     const plain = meshes.map((m) => ({ ...m, colors: null }));
     const plainTexels = plain.reduce((sum, m, i) => sum + counts[i] * ((m.normals ? 3 : 0) + (m.uvs ? 2 : 0)), 0);
-    expect(firstNode(build(plain))).toBe(Math.ceil((2048 + plainTexels) / 8) * 8);
+    expect(firstNode(build(plain))).toBe(Math.ceil((2048 + plainTexels) / 2048) * 2048);
   });
 
   it('the triangle limits are the most whose texels end below 2^24, with and without vertex colors', () => {

@@ -1,13 +1,14 @@
 /**
  * Packs a BVH and its triangles into one RGBA32F texture for the GLSL
- * traversal (src/shaders/scene/bvh.glsl). Integers (node and triangle
- * indices, counts, mesh and material indices) are stored as float values:
- * exact below 2^24, and no denormal bit patterns for a GPU to flush.
+ * traversal (src/shaders/scene/bvh.glsl). Integers (texel indices, mesh and
+ * material indices) are stored as float values: exact below 2^24, and no
+ * denormal bit patterns for a GPU to flush. The one exception, the nodes'
+ * child codes, are bit patterns of normal floats (1 .. 2^32: see below).
  *
- * One texture, so that one traversal step fetches the same 4 texels whether
- * it visits a node or tests a triangle (SwiftShader runs every fetch of a
- * loop body for all 4 lanes of a quad, whatever each lane does, and the 4
- * fetches are about half of a step's cost: bench/bvh-kernel-ab.ts).
+ * One texture, so that one traversal step fetches the same 7 texels whether
+ * it visits a node or tests triangles (SwiftShader runs every fetch of a
+ * loop body for all 4 lanes of a quad, whatever each lane does, and the
+ * fetches are about a third of a step's cost: bench/bvh-kernel-ab.ts).
  *
  * A 2D array texture BVH_TEXTURE_WIDTH (2048) texels wide and
  * BVH_LAYER_ROWS (512) high, as many layers as needed (a single layer only
@@ -16,12 +17,15 @@
  * MAX_TEXTURE_SIZE >= 2048 and MAX_ARRAY_TEXTURE_LAYERS >= 256, so the layout
  * works on every WebGL2 device; short layers waste at most 16 MB of padding.
  *
- * A step reads its 4 texels with one texel coordinate and constant offsets
- * (texelFetchOffset: cheaper on SwiftShader than 4 addresses), so no node
- * or triangle straddles a row: rows hold 681 triangles (2043 texels).
+ * A step reads its 7 texels with one texel coordinate and constant offsets
+ * (texelFetchOffset: cheaper on SwiftShader than 7 addresses), so no node
+ * or triangle pair straddles a row: rows hold 681 triangles (2043 texels,
+ * the last 5 zero) or 292 nodes (2044 texels).
  * Texels, in order:
- *   rows 0 ..              triangle j (BVH order) at texel triangleTexel(j) =
- *                          (j / 681) * 2048 + (j % 681) * 3 .. + 2: (v0.xyz, local material),
+ *   0 .. 6                 the root node (BVH_ROOT_NODE = 0)
+ *   rows 0 ..              triangle j (BVH order) at texel triangleTexel(j): slot
+ *                          s = j + 3 (the root takes row 0's first 3 slots) at
+ *                          (s / 681) * 2048 + (s % 681) * 3 .. + 2: (v0.xyz, local material),
  *                          (v1.xyz, attributes), (v2.xyz, mesh index)
  *                          mesh index: the scene mesh (-1 in a shared group: its
  *                          instance gives the mesh); local material: the index
@@ -32,7 +36,6 @@
  *                          material slot: they depend only on the meshes'
  *                          geometry, transforms and order, never on the
  *                          spheres, lights, ground or materials.
- *   2044 .. 2047           the root node (node 511), in row 0's spare texels
  *                          attributes: where the triangle's per-corner attributes are
  *                          (read once per closest hit, never in the traversal loop):
  *                            -1          none (flat, no texture coordinates, no colors);
@@ -51,19 +54,20 @@
  *                          corners' vertex colors (linear rgb; only for meshes whose
  *                          material multiplies its base color by them, glTF COLOR_0):
  *                          (c0.rgb, 0), (c1.rgb, 0), (c2.rgb, 0)
- *   then, from a multiple of 4, the other nodes: node q at texels 4q .. 4q + 3.
+ *   from the next row      the other nodes, 292 to a row (7 texels each).
  *
- * Only interior nodes are stored (Aila and Laine 2009): a node holds both
- * children's boxes, so visiting it tests both, and a leaf is known from its
- * parent (no visit of its own). Node q, children c0 and c1:
- *   4q:     (c0.min.xyz, ref0)     ref: a child node's q (end 0),
- *   4q + 1: (c0.max.xyz, ref1)          or a leaf's first triangle's texel
- *   4q + 2: (c1.min.xyz, end0)     end: texel of the triangle after a leaf's last (> 0), 0 for a node
- *   4q + 3: (c1.max.xyz, end1)
- * Sibling leaves hold consecutive triangles (the build partitions ranges), so
- * hitting both is one range. A root that is a leaf (a few triangles) becomes
- * a node whose two children are that leaf (same box, same range: each
- * triangle is still tested once).
+ * The BVH is 4-wide (wide.ts collapses the binary SAH build): a node holds
+ * its up to 4 children's boxes, so visiting it tests all of them, and a leaf
+ * is known from its parent. A node at texel q, children c = 0 .. 3 in the
+ * components (structure of arrays):
+ *   q + 0, q + 1:  the children's min x, max x
+ *   q + 2, q + 3:  min y, max y
+ *   q + 4, q + 5:  min z, max z
+ *   q + 6:         codes: the float whose bits are BVH_CODE_BIAS + ref * 16 + count
+ *                  (nodeChildren decodes them): a leaf of `count` (1 .. 8)
+ *                  triangles from texel `ref`, or (count 0) the child node at
+ *                  texel `ref`; 0.0 for an empty slot.
+ * A root that is a leaf (a few triangles) becomes a node with that one child.
  *
  * Limit: texel indices are stored as floats, exact up to 2^24 = 16.7M
  * texels (16 layers): triangles and attributes must end below that, which
@@ -71,12 +75,11 @@
  * meshes without vertex colors; vertex colors take 3 texels more per
  * triangle, so with them the packer's bound is MAX_COLORED_TRIANGLES
  * (1.52M, every triangle smooth, textured and colored) and a scene past it
- * is refused here with a message naming both. Nodes are referred to by node
- * index (texel / 4). Memory per triangle: 48 bytes flat, 96 smooth, 32 more
+ * is refused here with a message naming both. Nodes are referred to by
+ * their first texel. Memory per triangle: 48 bytes flat, 96 smooth, 32 more
  * with texture coordinates (80 flat, 128 smooth), 48 more with vertex
- * colors (80 more for a flat one without uvs: its zero uvs), plus 64 bytes
- * per interior node (about one per two triangles at the build's leaf
- * sizes): ~130 MB for 1M smooth triangles, ~160 MB textured, ~208 MB
+ * colors (80 more for a flat one without uvs: its zero uvs), plus 112 bytes
+ * per wide node (about one per 3.6 triangles at the build's leaf sizes): ~130 MB for 1M smooth triangles, ~160 MB textured, ~208 MB
  * textured and colored.
  */
 import type { Bvh, BvhMeshInput } from './build';
@@ -84,12 +87,16 @@ import { BVH_WIDTH, collapseBvh } from './wide';
 
 export const BVH_TEXTURE_WIDTH = 2048;
 export const BVH_LAYER_ROWS = 512;
-/** A wide node's texels (6 of its children's boxes, 1 of references, 1 of counts). */
-export const BVH_NODE_TEXELS = 8;
+/** A wide node's texels: 6 of its children's boxes (SoA), 1 of their codes (nodeChildren). */
+export const BVH_NODE_TEXELS = 7;
+/** Nodes per texture row (none straddles a row: 2044 texels, 4 spare). */
+export const BVH_ROW_NODES = Math.floor(BVH_TEXTURE_WIDTH / BVH_NODE_TEXELS);
+/** A child's code holds the float whose bits are BVH_CODE_BIAS + (ref * 16 + count): a normal float (1 .. 2^32, never a denormal a GPU could flush, nor a NaN); 0.0 an empty slot. */
+export const BVH_CODE_BIAS = 0x3f800000;
 export const BVH_TRIANGLE_TEXELS = 3;
-/** Triangles per texture row (2043 texels): an 8-texel read from the row's last triangle (column 2040) stays in the row. */
+/** Triangles per texture row (2043 texels): a 7-texel read from the row's last triangle (column 2040) stays in the row. */
 export const BVH_ROW_TRIANGLES = Math.floor(BVH_TEXTURE_WIDTH / BVH_TRIANGLE_TEXELS) - 1;
-/** The root node: texels 0 .. 7 of row 0. */
+/** The root node's first texel: texels 0 .. 6 of row 0. Nodes are referred to by their first texel. */
 export const BVH_ROOT_NODE = 0;
 /** Triangle slots of row 0 the root takes (texels 0 .. 8): triangle j is in slot j + this. */
 export const BVH_FIRST_SLOT = Math.ceil(BVH_NODE_TEXELS / BVH_TRIANGLE_TEXELS);
@@ -194,39 +201,38 @@ export function packBvhGroups(groups: BvhGroup[]): PackedBvh {
   if (attributesEnd > BVH_MAX_TEXELS) {
     throw new Error(`${n} triangles exceed the BVH texture limit (${MAX_TRIANGLES} smooth textured triangles in total, ${MAX_COLORED_TRIANGLES} with vertex colors)`);
   }
-  // Wide nodes: the first group's root at BVH_ROOT_NODE, every other (depth-first, group by group) from the first multiple of 8 texels after the attributes.
+  // Wide nodes: the first group's root at BVH_ROOT_NODE, every other (depth-first, group by group) from the row after the attributes, BVH_ROW_NODES to a row.
   const wides = groups.map(({ bvh }) => collapseBvh(bvh));
-  const firstSlot = Math.ceil(attributesEnd / BVH_NODE_TEXELS);
+  const nodesStart = Math.ceil(attributesEnd / BVH_TEXTURE_WIDTH) * BVH_TEXTURE_WIDTH;
+  const nodeTexel = (k: number) => nodesStart + Math.floor(k / BVH_ROW_NODES) * BVH_TEXTURE_WIDTH + (k % BVH_ROW_NODES) * BVH_NODE_TEXELS;
   let stored = 1;
   const slotBase = wides.map((w, g) => {
-    const base = g === 0 ? firstSlot - 1 : firstSlot + stored - 1;
+    const base = g === 0 ? -1 : stored - 1;
     stored += w.nodeCount - (g === 0 ? 1 : 0);
     return base;
   });
-  // Wide node w of group g: the root of group 0 at BVH_ROOT_NODE, others at base + w.
-  const slotOf = (g: number, w: number) => (g === 0 && w === 0 ? BVH_ROOT_NODE : slotBase[g] + w);
-  const texture = bvhTexture(Math.max(attributesEnd, (firstSlot + stored - 1) * BVH_NODE_TEXELS));
+  // Wide node w of group g: the root of group 0 at BVH_ROOT_NODE, others the (base + w)th after the attributes.
+  const texelOf = (g: number, w: number) => (g === 0 && w === 0 ? BVH_ROOT_NODE : nodeTexel(slotBase[g] + w));
+  const texture = bvhTexture(Math.max(attributesEnd, stored > 1 ? nodeTexel(stored - 2) + BVH_NODE_TEXELS : 0));
   const out = texture.data;
+  const bits = new Int32Array(out.buffer, out.byteOffset, out.length);
 
   groups.forEach(({ bvh }, g) => {
     const { nodeBounds, nodeData } = bvh;
     const { children, nodeCount, wideOf } = wides[g];
     for (let w = 0; w < nodeCount; w++) {
-      const o = slotOf(g, w) * BVH_NODE_TEXELS * 4;
+      const o = texelOf(g, w) * 4;
       for (let c = 0; c < BVH_WIDTH; c++) {
         const child = children[w * BVH_WIDTH + c];
-        if (child < 0) {
-          out[o + 28 + c] = -1; // an empty slot
-          continue;
-        }
+        if (child < 0) continue; // an empty slot: its code stays 0.0
         // SoA: texel 2k holds the children's min along axis k, 2k + 1 their max.
         for (let k = 0; k < 3; k++) {
           out[o + 8 * k + c] = nodeBounds[child * 6 + k];
           out[o + 8 * k + 4 + c] = nodeBounds[child * 6 + 3 + k];
         }
         const count = nodeData[child * 2 + 1];
-        out[o + 24 + c] = count > 0 ? triangleTexel(firstTriangle[g] + nodeData[child * 2]) : slotOf(g, wideOf[child]);
-        out[o + 28 + c] = count;
+        const ref = count > 0 ? triangleTexel(firstTriangle[g] + nodeData[child * 2]) : texelOf(g, wideOf[child]);
+        bits[o + 24 + c] = BVH_CODE_BIAS + ref * 16 + count;
       }
     }
   });
@@ -266,7 +272,9 @@ export function packBvhGroups(groups: BvhGroup[]): PackedBvh {
     }
     firstInput += meshOf[meshes.length];
   });
-  const roots = groups.map((_, g) => slotOf(g, 0));
+  const roots = groups.map((_, g) => texelOf(g, 0));
+  // Roots travel as float values (the instance table): exact below 2^24.
+  if (roots.some((r) => r >= BVH_MAX_TEXELS)) throw new Error(`a BVH group's root node is past texel 2^24 (${n} triangles)`);
   const depth = groups.reduce((d, g) => Math.max(d, g.bvh.depth), 0);
   const stackEntries = wides.reduce((d, w) => Math.max(d, w.stackEntries), 0);
   return { texture, nodeCount: stored, triangleCount: n, triangleOrder, depth, stackEntries, roots };
@@ -285,9 +293,28 @@ function findMesh(meshOf: Uint32Array, id: number, guess: number): number {
   return lo;
 }
 
+/** A child of a wide node: its box, and a leaf's first triangle's texel and triangle count, or a child node's texel (count 0). */
+export interface WideChild {
+  lo: [number, number, number];
+  hi: [number, number, number];
+  ref: number;
+  count: number;
+}
+
+/** The 4 child slots of the node at `texel` (bvh.glsl's decoding); null for an empty slot. */
+export function nodeChildren(data: Float32Array, texel: number): (WideChild | null)[] {
+  const o = texel * 4;
+  const codes = new Int32Array(data.buffer, data.byteOffset + (o + 24) * 4, 4);
+  return [0, 1, 2, 3].map((c) => {
+    const code = codes[c] - BVH_CODE_BIAS;
+    if (code < 0) return null;
+    const axis = (k: number, hi: number) => data[o + 8 * k + 4 * hi + c];
+    return { lo: [axis(0, 0), axis(1, 0), axis(2, 0)], hi: [axis(0, 1), axis(1, 1), axis(2, 1)], ref: code >> 4, count: code & 15 };
+  });
+}
+
 /** The box around everything: the union of the root's children's boxes (min xyz, max xyz). */
 export function bvhBounds(packed: PackedBvh): [number[], number[]] {
-  const d = packed.texture.data.subarray(BVH_ROOT_NODE * BVH_NODE_TEXELS * 4);
-  const used = [0, 1, 2, 3].filter((c) => d[28 + c] >= 0);
-  return [[0, 1, 2].map((k) => Math.min(...used.map((c) => d[8 * k + c]))), [0, 1, 2].map((k) => Math.max(...used.map((c) => d[8 * k + 4 + c])))];
+  const used = nodeChildren(packed.texture.data, BVH_ROOT_NODE).filter((c): c is WideChild => c !== null);
+  return [[0, 1, 2].map((k) => Math.min(...used.map((c) => c.lo[k]))), [0, 1, 2].map((k) => Math.max(...used.map((c) => c.hi[k])))];
 }

@@ -5,7 +5,7 @@
  * watertight ray-triangle test (Woop, Benthin and Wald, JCGT 2013). Tests
  * compare it with brute force and with the GLSL.
  */
-import { BVH_NODE_TEXELS, BVH_ROOT_NODE, BVH_ROW_TRIANGLES, BVH_TEXTURE_WIDTH, triangleAt, triangleTexel, type PackedBvh } from './pack';
+import { BVH_ROOT_NODE, nodeChildren, BVH_ROW_TRIANGLES, BVH_TEXTURE_WIDTH, triangleAt, triangleTexel, type PackedBvh } from './pack';
 import { MAX_WIDE_STACK } from './wide';
 
 export type Vec3 = readonly [number, number, number];
@@ -148,7 +148,7 @@ export function traverseBvh(packed: PackedBvh, origin: Vec3, dir: Vec3, tMax: nu
   return best;
 }
 
-/** A traversal item: a node, or a leaf's triangles from `texel` (`count` of them). */
+/** A traversal item: a node (its first texel), or a leaf's triangles from `texel` (`count` of them). */
 type Item = { node: number } | { texel: number; count: number };
 
 /** The comparators of bvh.glsl's sorting network (bvhOrder: the second goes first only when strictly farther). */
@@ -160,22 +160,20 @@ export const SORT_NETWORK = [
   [1, 2],
 ] as const;
 
-/** Node q's children whose boxes the ray enters before tMax, farthest first (bvh.glsl's sorting network). */
-function nodeHits(tex: Float32Array, q: number, origin: Vec3, invDir: Vec3, tMax: number): Item[] {
-  const o = q * BVH_NODE_TEXELS * 4;
-  const entries = [0, 1, 2, 3].map((c) => {
-    const count = tex[o + 28 + c];
+/** The children of the node at `texel` whose boxes the ray enters before tMax, farthest first (bvh.glsl's sorting network). */
+function nodeHits(tex: Float32Array, texel: number, origin: Vec3, invDir: Vec3, tMax: number): Item[] {
+  const entries = nodeChildren(tex, texel).map((child) => {
+    if (!child) return { key: -1, item: { node: -1 } as Item };
     let enter = 0;
     let exit = tMax;
     for (let k = 0; k < 3; k++) {
-      const t0 = (tex[o + 8 * k + c] - origin[k]) * invDir[k];
-      const t1 = (tex[o + 8 * k + 4 + c] - origin[k]) * invDir[k];
+      const t0 = (child.lo[k] - origin[k]) * invDir[k];
+      const t1 = (child.hi[k] - origin[k]) * invDir[k];
       enter = Math.max(enter, Math.min(t0, t1));
       exit = Math.min(exit, Math.max(t0, t1));
     }
-    const hit = count >= 0 && enter <= exit * BOX_EXIT_SCALE;
-    const ref = tex[o + 24 + c];
-    return { key: hit ? enter : -1, item: (count > 0 ? { texel: ref, count } : { node: ref }) as Item };
+    const hit = enter <= exit * BOX_EXIT_SCALE;
+    return { key: hit ? enter : -1, item: (child.count > 0 ? { texel: child.ref, count: child.count } : { node: child.ref }) as Item };
   });
   for (const [a, b] of SORT_NETWORK) {
     if (entries[b].key > entries[a].key) [entries[a], entries[b]] = [entries[b], entries[a]];

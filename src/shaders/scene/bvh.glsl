@@ -3,11 +3,13 @@
 // src/render/bvhTextures.ts.
 //
 // uniform sampler2DArray uBvh  RGBA32F, 2048 x 512 (one layer: fewer rows) x layers;
-//   texel i at (i % 2048, (i / 2048) % 512, layer i / 2^20). Integers are exact float values.
-//   Node q = texels 4q .. 4q + 3 (the root: q = BVH_ROOT_NODE), its children's boxes:
-//     (c0.min.xyz, ref0), (c0.max.xyz, ref1), (c1.min.xyz, end0), (c1.max.xyz, end1);
-//     child c is a leaf of the triangles at texels ref_c (first) .. end_c (after the last)
-//     when end_c > 0, else node ref_c.
+//   texel i at (i % 2048, (i / 2048) % 512, layer i / 2^20). Integers are exact float values
+//   but for the nodes' codes (bit patterns of normal floats).
+//   A node at texel q (the root: q = BVH_ROOT_NODE) holds its up to 4 children's boxes as
+//     structure of arrays, one child per component: (min x), (max x), (min y), (max y),
+//     (min z), (max z), then their codes: floatBitsToInt - BVH_CODE_BIAS = ref * 16 + count,
+//     a leaf of `count` triangles from texel ref, or (count 0) the node at texel ref;
+//     negative for an empty slot.
 //   Triangle j (BVH order) = texels bvhTriangleTexel(j) .. + 2, 681 to a row (none straddles one):
 //     (v0.xyz, local material), (v1.xyz, attributes), (v2.xyz, mesh index);
 //     the material-table index is the mesh record's materialBase + local (scene/intersect.glsl);
@@ -22,22 +24,22 @@
 // step through everything in the loop body, whatever each lane does (both
 // sides of every branch; only a loop's back edge skips work), and a
 // texelFetch is a call into its sampler routine. So each step of the one loop
-// fetches the same 4 texels for every lane (one coordinate and constant
-// offsets: no node or triangle straddles a row) and uses them as a node (a
-// lane with no triangle pending) or as a triangle, both computed and one
-// selected. Per step the 4 fetches are about half the cost, the two box
-// tests, the triangle test and the bookkeeping (stack included) the rest
-// (bench/bvh-kernel-ab.ts; bench/results/bvh-speed-2026-11-28.md).
-// A node step tests both children's boxes: hit leaves become the pending
-// triangle range (sibling leaves are consecutive: one range), a hit child node
-// the next node (both: the nearer, the other pushed on a fixed stack of
-// BVH_STACK_SIZE; the build caps the depth at that); with no next node, one
-// is popped (no distances on the stack: a popped node farther than the best
-// hit costs one step, which its boxes then reject). A triangle step runs the
-// watertight ray-triangle test of Woop, Benthin and Wald (JCGT 2013), so a
-// ray through a shared edge or vertex hits one of its triangles. The slab
-// test is conservative. Hits need 0 < t < tMax: the caller offsets ray
-// origins.
+// fetches the same 7 texels for every lane (one coordinate and constant
+// offsets: no node or triangle pair straddles a row) and uses them as a 4-wide
+// node (a lane with no triangles pending) or as the next two triangles of a
+// leaf, both computed and one selected. Per step the 7 fetches are about a
+// third of the cost, the 4 box tests a seventh, each triangle test a twelfth
+// (bench/bvh-kernel-ab.ts; bench/results/wide-bvh-2026-12-06.md).
+// A node step tests its children's boxes, sorts them by entry distance with a
+// 5-comparator network of selects (farthest first, misses last) and writes all
+// 4 on the stack from its top, counting the hit ones: the nearest is popped
+// next, and leaves ride the stack as pending triangle ranges. A popped item
+// farther than the best hit costs a step (no distances on the stack). The stack
+// holds BVH_STACK_SIZE entries and 4 spare; wide.ts bounds its depth. A
+// triangle step runs the watertight ray-triangle test of Woop, Benthin and
+// Wald (JCGT 2013) twice, so a ray through a shared edge or vertex hits one of
+// its triangles. The slab test is conservative. Hits need 0 < t < tMax: the
+// caller offsets ray origins.
 
 // Compiled in only for scenes with meshes (HAS_MESHES; trace program variants).
 #if HAS_MESHES
@@ -60,8 +62,8 @@
 #ifndef BVH_FIRST_SLOT
 #define BVH_FIRST_SLOT 3
 #endif
-#ifndef BVH_NODE_TEXELS
-#define BVH_NODE_TEXELS 8
+#ifndef BVH_CODE_BIAS
+#define BVH_CODE_BIAS 0x3f800000
 #endif
 #ifndef HAS_INSTANCES
 #define HAS_INSTANCES 0
@@ -126,8 +128,8 @@ mat3 bvhShear(vec3 dir) {
   return mat3(ex - (dot(dir, ex) / dz) * ez, ey - (dot(dir, ey) / dz) * ez, ez / dz);
 }
 
-// The 8 texels from texel i (i % 2048 <= 2040: they share a row).
-void bvhTexels8(int i, out vec4 t0, out vec4 t1, out vec4 t2, out vec4 t3, out vec4 t4, out vec4 t5, out vec4 t6, out vec4 t7) {
+// The 7 texels from texel i (i % 2048 <= 2041: they share a row).
+void bvhTexels7(int i, out vec4 t0, out vec4 t1, out vec4 t2, out vec4 t3, out vec4 t4, out vec4 t5, out vec4 t6) {
   const int columns = (1 << BVH_TEXTURE_WIDTH_LOG2) - 1;
   const int rows = (1 << BVH_LAYER_ROWS_LOG2) - 1;
   ivec3 at = ivec3(i & columns, (i >> BVH_TEXTURE_WIDTH_LOG2) & rows, i >> (BVH_TEXTURE_WIDTH_LOG2 + BVH_LAYER_ROWS_LOG2));
@@ -138,7 +140,6 @@ void bvhTexels8(int i, out vec4 t0, out vec4 t1, out vec4 t2, out vec4 t3, out v
   t4 = texelFetchOffset(uBvh, at, 0, ivec2(4, 0));
   t5 = texelFetchOffset(uBvh, at, 0, ivec2(5, 0));
   t6 = texelFetchOffset(uBvh, at, 0, ivec2(6, 0));
-  t7 = texelFetchOffset(uBvh, at, 0, ivec2(7, 0));
 }
 
 int bvhTriangleTexel(int j) {
@@ -205,10 +206,9 @@ int bvhFindTexel(int root, vec3 origin, vec3 dir, mat3 shear, bool anyHit, inout
     bool isTriangle = item < -1;
     int leaf = -2 - item;
     int leafTexel = leaf >> 4;
-    int nodeTexel = BVH_NODE_TEXELS * item;
-    int texel = isTriangle ? leafTexel : nodeTexel;
-    vec4 t0, t1, t2, t3, t4, t5, t6, t7;
-    bvhTexels8(texel, t0, t1, t2, t3, t4, t5, t6, t7);
+    int texel = isTriangle ? leafTexel : item;
+    vec4 t0, t1, t2, t3, t4, t5, t6;
+    bvhTexels7(texel, t0, t1, t2, t3, t4, t5, t6);
 
     // As triangles: the next two of the leaf (the barycentrics: bvhHitAt). A
     // row's last triangle's pair is the row's zero padding: never hit.
@@ -233,21 +233,22 @@ int bvhFindTexel(int root, vec3 origin, vec3 dir, mat3 shear, bool anyHit, inout
     int rest = -2 - (nextTexel << 4 | left);
     int triangleItem = left > 0 ? rest : -1;
 
-    // As a node: the 4 children's boxes (texels 0 .. 5: min x, max x, min y, ..),
-    // references (6) and counts (7: a leaf's triangles, 0 a node, -1 empty).
+    // As a node: the 4 children's boxes (texels 0 .. 5: min x, max x, min y, ..)
+    // and codes (6: ref * 16 + count, count 0 for a node; negative: an empty slot).
     vec4 x0 = (t0 - origin.x) * invDir.x, x1 = (t1 - origin.x) * invDir.x;
     vec4 y0 = (t2 - origin.y) * invDir.y, y1 = (t3 - origin.y) * invDir.y;
     vec4 z0 = (t4 - origin.z) * invDir.z, z1 = (t5 - origin.z) * invDir.z;
     vec4 enter = max(max(min(x0, x1), min(y0, y1)), max(min(z0, z1), vec4(0.0)));
     vec4 exit = min(min(max(x0, x1), max(y0, y1)), min(max(z0, z1), vec4(best)));
+    ivec4 code = floatBitsToInt(t6) - BVH_CODE_BIAS;
     vec4 inBox = vec4(lessThanEqual(enter, exit * BVH_BOX_EXIT_SCALE));
-    vec4 used = vec4(greaterThanEqual(t7, vec4(0.0)));
+    vec4 used = vec4(greaterThanEqual(code, ivec4(0)));
     float isNode = isTriangle ? 0.0 : 1.0;
     vec4 hit = inBox * used * isNode;
     // Sort keys: the entry distance, -1 for a child not hit (sorted last).
     vec4 d = mix(vec4(-1.0), enter, greaterThan(hit, vec4(0.0)));
-    ivec4 ref = ivec4(t6), n = ivec4(t7);
-    ivec4 leaves = -2 - (ref << 4 | n);
+    ivec4 ref = code >> 4, n = code & 15;
+    ivec4 leaves = -2 - code;
     float d0 = d.x, d1 = d.y, d2 = d.z, d3 = d.w;
     int i0 = n.x > 0 ? leaves.x : ref.x, i1 = n.y > 0 ? leaves.y : ref.y;
     int i2 = n.z > 0 ? leaves.z : ref.z, i3 = n.w > 0 ? leaves.w : ref.w;
