@@ -30,8 +30,8 @@ export const UNIFORM_SHARE = 0.25;
 /** Most cells per axis, and in all. */
 const MAX_CELLS_PER_AXIS = 16;
 const MAX_CELLS = 4096;
-/** Most texels of the tables ((cells + 1) x emitters): 16 MB. */
-const MAX_TABLE_TEXELS = 1 << 20;
+/** Most texels of the tables ((cells + 1) x emitters): 4 MB (64 emitters keep 4095 cells). */
+const MAX_TABLE_TEXELS = 1 << 18;
 
 export interface Box {
   min: Vec3;
@@ -50,7 +50,6 @@ export interface LightChoice {
 }
 
 const sub = (a: Vec3, b: Vec3): Vec3 => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-const dot = (a: Vec3, b: Vec3) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 
 /**
  * About the irradiance an emitter gives a point of the ball (center,
@@ -59,20 +58,23 @@ const dot = (a: Vec3, b: Vec3) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 export function reachWeight(reach: LightReach, center: Vec3, radius: number): number {
   if (reach.strength <= 0) return 0;
   if (!reach.bound) return reach.strength;
-  const toCell = sub(center, reach.bound.center);
-  const d2 = dot(toCell, toCell);
-  const d = Math.sqrt(d2);
+  const c = reach.bound.center;
+  const [x, y, z] = [center[0] - c[0], center[1] - c[1], center[2] - c[2]];
+  const d2 = x * x + y * y + z * z;
   // Padded so that rounding never culls a point of the cell.
   const r = radius * (1 + 1e-3) + 1e-6;
   let weight = reach.strength / Math.max(d2, (radius + reach.bound.radius) ** 2, 1e-12);
   if (reach.front) {
-    const height = dot(toCell, reach.front);
+    const n = reach.front;
+    const height = x * n[0] + y * n[1] + z * n[2];
     if (height < -r) return 0;
     // The cosine at the light for the ball's best point, at least 0.1: only the zero must be exact.
     weight *= Math.min(1, Math.max(0.1, (height + r) / Math.sqrt(d2 + r * r)));
   }
+  const d = Math.sqrt(d2);
   if (reach.cone && d > r) {
-    const angle = Math.acos(Math.min(1, Math.max(-1, dot(toCell, reach.cone.axis) / d)));
+    const a = reach.cone.axis;
+    const angle = Math.acos(Math.min(1, Math.max(-1, (x * a[0] + y * a[1] + z * a[2]) / d)));
     const spread = Math.asin(Math.min(1, r / d));
     if (angle - spread > Math.acos(reach.cone.cosCutoff) + 1e-4) return 0;
   }
@@ -100,13 +102,70 @@ export function gridCells(box: Box, budget: number): [number, number, number] {
   return cells;
 }
 
-/** One table's texels from its probabilities. */
+/** One table's texels from its probabilities (the global table: through buildAliasTable, as version 2 built it). */
 function writeTable(texels: Float32Array, first: number, probabilities: readonly number[]): void {
   const alias = buildAliasTable(probabilities);
   probabilities.forEach((_, i) => {
     const a = alias.alias[i];
     texels.set([alias.threshold[i], a, alias.pdf[i], alias.pdf[a]], (first + i) * 4);
   });
+}
+
+/**
+ * Working arrays of a cell's table, reused from cell to cell: a grid of
+ * 4096 cells is rebuilt on every edit of a light (dragging one repacks the
+ * scene each frame), so a cell allocates nothing.
+ */
+class CellTables {
+  private readonly weights: Float64Array;
+  private readonly scaled: Float64Array;
+  private readonly small: Int32Array;
+  private readonly large: Int32Array;
+
+  constructor(private readonly count: number) {
+    this.weights = new Float64Array(count);
+    this.scaled = new Float64Array(count);
+    this.small = new Int32Array(count);
+    this.large = new Int32Array(count);
+  }
+
+  /** Writes the table of the cell (center, radius) at texel `first`: weights, the uniform share, then Vose's alias construction. */
+  write(texels: Float32Array, first: number, reaches: readonly LightReach[], center: Vec3, radius: number, global: readonly number[]): void {
+    const { count, weights, scaled, small, large } = this;
+    let total = 0;
+    let lit = 0;
+    for (let i = 0; i < count; i++) {
+      weights[i] = reachWeight(reaches[i], center, radius);
+      total += weights[i];
+      if (weights[i] > 0) lit++;
+    }
+    const fallback = !(total > 0) || !Number.isFinite(total);
+    for (let i = 0; i < count; i++) {
+      const mixed = weights[i] > 0 ? (1 - UNIFORM_SHARE) * (weights[i] / total) + UNIFORM_SHARE / lit : 0;
+      weights[i] = fallback ? global[i] : mixed;
+    }
+    let ns = 0;
+    let nl = 0;
+    for (let i = 0; i < count; i++) {
+      scaled[i] = weights[i] * count;
+      const at = (first + i) * 4;
+      texels[at] = 1;
+      texels[at + 1] = i;
+      texels[at + 2] = weights[i];
+      if (scaled[i] < 1) small[ns++] = i;
+      else large[nl++] = i;
+    }
+    while (ns > 0 && nl > 0) {
+      const s = small[--ns];
+      const l = large[nl - 1];
+      texels[(first + s) * 4] = scaled[s];
+      texels[(first + s) * 4 + 1] = l;
+      scaled[l] -= 1 - scaled[s];
+      if (scaled[l] < 1) small[ns++] = large[--nl];
+    }
+    // What is left keeps itself (threshold 1, up to rounding). Then each entry's alias's probability.
+    for (let i = 0; i < count; i++) texels[(first + i) * 4 + 3] = weights[texels[(first + i) * 4 + 1]];
+  }
 }
 
 /**
@@ -126,12 +185,15 @@ export function buildLightChoice(reaches: readonly LightReach[], globalWeights: 
   const origin: Vec3 = box ? [...box.min] : [0, 0, 0];
   const cellSize = box ? ([0, 1, 2].map((k) => (box.max[k] - box.min[k]) / Math.max(cells[k], 1)) as Vec3) : ([1, 1, 1] as Vec3);
   const radius = Math.hypot(...cellSize) / 2;
+  const tablesOfCells = new CellTables(count);
+  const center: Vec3 = [0, 0, 0];
   for (let z = 0; z < cells[2]; z++) {
     for (let y = 0; y < cells[1]; y++) {
       for (let x = 0; x < cells[0]; x++) {
-        const center: Vec3 = [origin[0] + (x + 0.5) * cellSize[0], origin[1] + (y + 0.5) * cellSize[1], origin[2] + (z + 0.5) * cellSize[2]];
-        const weights = reaches.map((r) => reachWeight(r, center, radius));
-        writeTable(texels, (x + cells[0] * (y + cells[1] * z)) * count, cellProbabilities(weights, global));
+        center[0] = origin[0] + (x + 0.5) * cellSize[0];
+        center[1] = origin[1] + (y + 0.5) * cellSize[1];
+        center[2] = origin[2] + (z + 0.5) * cellSize[2];
+        tablesOfCells.write(texels, (x + cells[0] * (y + cells[1] * z)) * count, reaches, center, radius, global);
       }
     }
   }

@@ -108,6 +108,17 @@ describe('buildLightChoice', () => {
     }
   });
 
+  it("gives each cell the probabilities cellProbabilities makes of its reach weights", () => {
+    const size = [0, 1, 2].map((k) => (box.max[k] - box.min[k]) / choice.cells[k]);
+    const radius = Math.hypot(...size) / 2;
+    for (const [x, y, z] of [[0, 0, 0], [3, 5, 7], [choice.cells[0] - 1, choice.cells[1] - 1, choice.cells[2] - 1]]) {
+      const center: Vec3 = [box.min[0] + (x + 0.5) * size[0], box.min[1] + (y + 0.5) * size[1], box.min[2] + (z + 0.5) * size[2]];
+      const expected = cellProbabilities(reaches.map((r) => reachWeight(r, center, radius)), globalWeights);
+      const table = tableAt(choice, center);
+      expected.forEach((p, i) => expect(entry(table, i)[2]).toBeCloseTo(p, 6));
+    }
+  });
+
   it('uses, outside the grid, the global table of the choice by power', () => {
     const global = buildAliasTable(globalWeights);
     for (let i = 0; i < count; i++) expect(Array.from(entry(choice.tables - 1, i))).toEqual(Array.from(new Float32Array([global.threshold[i], global.alias[i], global.pdf[i], global.pdf[global.alias[i]]])));
