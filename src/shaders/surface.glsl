@@ -77,9 +77,10 @@ ShadingNormal shadingNormal(Material m, Surface s, vec3 facing, vec3 toViewer) {
   r.base = facing;
   r.a2 = 0.0;
 #if HAS_NORMAL_MAPS
-  // Under a branch, not as selects: the textured, normal-mapped trace
-  // program then compiles in 13 s instead of 47 s (SwiftShader, textured.json,
-  // 2026-12-02). The same branch around normalMapFactor's body made it 25 s.
+  // An if without an else: its two paths differ in length, so SwiftShader's
+  // compile does not double on it (an if/else, or ternaries of computed
+  // values, would: see pick() in common/math.glsl; on 2026-12-02 this block
+  // written as such ternaries made textured.json compile in 47 s, not 13 s).
   int t = materialNormalMap(m);
   vec3 x = s.tangent.xyz - s.normal * dot(s.normal, s.tangent.xyz);
   if (t >= 0 && dot(x, x) > 0.0) {
