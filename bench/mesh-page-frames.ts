@@ -94,6 +94,10 @@ async function main(argv: string[]): Promise<void> {
     const page = await browser.newPage({ viewport: { width: 1400, height: 1000 }, deviceScaleFactor: 1 });
     await page.addInitScript({ content: 'globalThis.__name = (f) => f;' }); // tsx's keepNames helper
     await page.addInitScript(recordFrames);
+    const traceFile = option(argv, 'trace', '');
+    const params = option(argv, 'params', '');
+    if (params) await page.addInitScript({ content: `globalThis.__loopParams = ${JSON.stringify(JSON.parse(params))};` });
+    if (traceFile) await page.addInitScript({ content: 'globalThis.__loopTrace = [];' });
     await page.goto(`${server.url}?maxwidth=512`);
     await page.waitForFunction(() => Number(document.querySelector('[data-testid="spp"]')?.textContent) >= 2, undefined, { timeout: 120_000 });
     const res = await page.locator('#resolution').textContent();
@@ -129,8 +133,32 @@ async function main(argv: string[]): Promise<void> {
     const t3 = await now(page);
     console.log(`first sample of the mesh after upload: ${((t3 - t2) / 1000).toFixed(1)} s; ${await gaps(page, t2, t3)}`);
     s0 = await samples(page);
+    const chromeTrace = option(argv, 'chrome-trace', '');
+    if (chromeTrace) {
+      await browser.startTracing(page, {
+        path: chromeTrace,
+        categories: ['toplevel', 'gpu', 'gpu.service', 'viz', 'cc', 'blink', 'disabled-by-default-gpu.service', 'disabled-by-default-gpu.decoder', 'gpu.angle', 'devtools.timeline', 'benchmark', 'scheduler'],
+      });
+      await page.waitForTimeout(4000);
+      await browser.stopTracing();
+    }
+    if (traceFile) await page.evaluate(() => (globalThis as unknown as { __loopSync?: () => void }).__loopSync?.());
     await page.waitForTimeout(seconds * 1000);
     const t4 = await now(page);
+    if (traceFile) {
+      await page.evaluate(() => (globalThis as unknown as { __loopSync?: () => void }).__loopSync?.());
+      const trace = await page.evaluate(
+        ({ from, to }) => {
+          const g = globalThis as unknown as { __loopTrace: { now: number }[]; __loopClock: unknown; __frames: number[] };
+          return { rows: g.__loopTrace.filter((r) => r.now >= from - 2000 && r.now <= to), clock: g.__loopClock, frames: g.__frames.filter((t) => t >= from - 2000 && t <= to) };
+        },
+        { from: t3, to: t4 },
+      );
+      // GPU timestamps (SwiftShader) are CLOCK_MONOTONIC, as is Node's hrtime: page time = monotonic - (hrtime - Date.now()) - timeOrigin.
+      const origin = await page.evaluate(() => performance.timeOrigin);
+      const monoMinusEpoch = Number(process.hrtime.bigint()) / 1e6 - Date.now();
+      writeFileSync(traceFile, JSON.stringify({ t3, t4, origin, monoMinusEpoch, ...trace }));
+    }
     const s4 = await samples(page);
     const rate = (s4 - s0) / ((t4 - t3) / 1000);
     console.log(

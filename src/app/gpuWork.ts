@@ -86,3 +86,47 @@ export class GpuQueue {
     this.idleAt = 0;
   }
 }
+
+/**
+ * The loop's work the GPU has not yet been seen to finish: a fence after each
+ * frame's work, polled every frame (the status of a fence changes only
+ * between tasks, some time after the GPU passed it).
+ */
+export class GpuFences {
+  private inflight: { sync: WebGLSync; ms: number }[] = [];
+
+  constructor(private gl: WebGL2RenderingContext) {}
+
+  /** Milliseconds of predicted work submitted and not seen finished. */
+  get pendingMs(): number {
+    return this.inflight.reduce((sum, f) => sum + f.ms, 0);
+  }
+
+  get pending(): number {
+    return this.inflight.length;
+  }
+
+  /** Drops the fences passed: a signaled fence means every earlier one is passed too. */
+  poll(): void {
+    const gl = this.gl;
+    for (let i = this.inflight.length - 1; i >= 0; i--) {
+      if (gl.getSyncParameter(this.inflight[i].sync, gl.SYNC_STATUS) === gl.SIGNALED) {
+        for (const f of this.inflight.slice(0, i + 1)) gl.deleteSync(f.sync);
+        this.inflight = this.inflight.slice(i + 1);
+        return;
+      }
+    }
+  }
+
+  /** Work predicted to take `ms` has just been submitted. */
+  submitted(ms: number): void {
+    const sync = this.gl.fenceSync(this.gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+    if (sync) this.inflight.push({ sync, ms });
+  }
+
+  reset(gl: WebGL2RenderingContext = this.gl): void {
+    if (!this.gl.isContextLost()) this.inflight.forEach((f) => this.gl.deleteSync(f.sync));
+    this.gl = gl;
+    this.inflight = [];
+  }
+}

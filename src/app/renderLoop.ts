@@ -11,8 +11,11 @@
 import type { PathTracer } from '../render/PathTracer';
 import type { ToneMap } from '../render/toneMaps';
 import type { Material, Scene } from '../scene/types';
-import { GpuQueue, GpuTimer } from './gpuWork';
+import { GpuFences, GpuQueue, GpuTimer } from './gpuWork';
+
+const PARAMS = ((globalThis as unknown as { __loopParams?: { mode?: string; inflight?: number; target?: number; flush?: boolean; statsMs?: number } }).__loopParams ?? {});
 import { PathBudget, type PathBudgetOptions } from './pathBudget';
+import { LoopTrace } from './loopTrace';
 
 export interface ViewSettings {
   exposure: number;
@@ -79,6 +82,7 @@ function costKey(scene: Scene): string {
 export class RenderLoop {
   private timer: GpuTimer;
   private readonly queue = new GpuQueue();
+  private readonly fences: GpuFences;
   private readonly budget: PathBudget;
   private lastFrame = 0;
   private renderedLastFrame = false;
@@ -93,6 +97,8 @@ export class RenderLoop {
   private frameHandle = 0;
   private costScene: Scene | null = null;
   private costKey = '';
+  private trace: LoopTrace;
+  private lastStats = 0;
 
   constructor(
     private readonly tracer: PathTracer,
@@ -102,6 +108,8 @@ export class RenderLoop {
     private readonly onStats: (stats: RenderStats) => void,
   ) {
     this.timer = new GpuTimer(tracer.gl);
+    this.trace = new LoopTrace(tracer.gl);
+    this.fences = new GpuFences(tracer.gl);
     this.budget = new PathBudget(this.budgetOptions());
     tracer.pathsPerDraw = PATHS_PER_DRAW;
     tracer.on('contextlost', () => {
@@ -147,16 +155,36 @@ export class RenderLoop {
     if (count < this.lastCount || count === 0) this.restartClock();
     const lost = tracer.contextLost;
     const working = !lost && !this.settings.paused && !this.done;
+    const row = this.trace.on ? this.trace.begin(now, { dt }) : null;
+    const stampBegin = row ? this.trace.stamp() : null;
     if (working) {
       this.adapt(dt);
       let paths = this.budget.paths;
       if (this.settings.targetSpp > 0) paths = Math.min(paths, (this.settings.targetSpp - count) * tracer.width * tracer.height);
       // While the GPU is predicted to be behind by a frame's work, this frame adds nothing.
       const target = this.budgetOptions().targetMs;
-      if (this.queue.backlog(now) > target) paths = 0;
+      if (row) {
+        row.backlog = this.queue.backlog(now);
+        row.cost = this.budget.costPerPath ?? -1;
+        row.budget = paths;
+      }
+      if (PARAMS.mode === 'fence') {
+        this.fences.poll();
+        if (row) row.pendingMs = this.fences.pendingMs;
+        if (this.fences.pending > 0 && this.fences.pendingMs > ((PARAMS.inflight ?? 1) - 1) * target) paths = 0;
+      } else if (PARAMS.mode === 'fill') {
+        this.fences.poll();
+        if (row) row.pendingMs = this.fences.pendingMs;
+        const room = (PARAMS.inflight ?? 2) * target - this.fences.pendingMs;
+        const cost = this.budget.costPerPath;
+        if (cost !== null) paths = Math.min(paths, Math.floor(room / cost));
+        if (paths < Math.min(this.budget.paths, MIN_PATHS * 4)) paths = 0;
+      } else if (this.queue.backlog(now) > target) paths = 0;
       const before = tracer.sampleCount;
       this.lastPaths = paths > 0 ? this.timer.measure(() => tracer.renderPaths(paths)) : 0;
+      if (PARAMS.flush && this.lastPaths > 0) tracer.gl.flush();
       this.queue.submitted(now, this.lastPaths * (this.budget.costPerPath ?? target / Math.max(1, this.lastPaths)));
+      if ((PARAMS.mode === 'fence' || PARAMS.mode === 'fill') && this.lastPaths > 0) this.fences.submitted(this.lastPaths * (this.budget.costPerPath ?? target / Math.max(1, this.lastPaths)));
       this.elapsedMs += this.renderedLastFrame ? dt : 0;
       if (tracer.sampleCount !== before || this.previewDue(now)) this.displayDirty = true;
     }
@@ -165,9 +193,18 @@ export class RenderLoop {
       tracer.display({ exposure: this.settings.exposure, toneMap: this.settings.toneMap });
       this.displayDirty = false;
       this.lastDisplay = now;
+      if (row) row.display = 1;
+    }
+    if (row) {
+      row.paths = this.lastPaths;
+      this.trace.end(row, stampBegin, this.trace.stamp());
     }
     this.lastCount = tracer.sampleCount + tracer.sampleProgress;
-    this.onStats(this.stats(now, lost));
+    const st = this.stats(now, lost);
+    if (!PARAMS.statsMs || now - this.lastStats >= PARAMS.statsMs || st.state !== 'rendering') {
+      this.lastStats = now;
+      this.onStats(st);
+    }
   };
 
   /**
@@ -186,7 +223,7 @@ export class RenderLoop {
 
   private budgetOptions(): PathBudgetOptions {
     const pixels = this.tracer.width * this.tracer.height;
-    const targetMs = this.timer.available ? GPU_BUDGET_MS : FRAME_GAP_BUDGET_MS;
+    const targetMs = PARAMS.target ?? (this.timer.available ? GPU_BUDGET_MS : FRAME_GAP_BUDGET_MS);
     const startPaths = this.tracer.currentScene.meshes.length ? START_PATHS_MESHES : START_PATHS;
     return { targetMs, startPaths, minPaths: MIN_PATHS, maxPaths: MAX_SAMPLES_PER_FRAME * pixels };
   }
