@@ -368,10 +368,11 @@ function wireOverlay(app: App): void {
   const aimHandle = element('circle', 'handle handle-aim', 'aim-handle');
   svg.append(dark, light, aimLineDark, aimLine, moveHandle, aimHandle);
   const drawSuns = sunMarkerLayer(svg, dark, (index) => app.select({ kind: 'light', index }), (index) => objectLabel(app.scene, { kind: 'light', index }) ?? '');
-  // Called every frame: writes only what changed. A write, even of the same value, makes the page repaint, and
-  // a repaint is a compositor frame, which on a software GPU waits for the path tracing queued before it.
+  // draw() runs every frame: it writes only what changed. A write, even of the same value, repaints the page,
+  // and every repaint is a compositor frame; headless on SwiftShader, a compositor frame reads the page back
+  // (~17 ms at 1400x1000) after all GPU work queued before it, path tracing included (bench/results/frame-pacing-2026-12-06.md).
   const set = (e: Element, name: string, value: string) => {
-    if ((globalThis as unknown as { __loopParams?: { overlayAlways?: boolean } }).__loopParams?.overlayAlways || e.getAttribute(name) !== value) e.setAttribute(name, value);
+    if (e.getAttribute(name) !== value) e.setAttribute(name, value);
   };
   const place = (circle: Element, at: { x: number; y: number } | undefined, r: number) => {
     set(circle, 'display', at ? 'inline' : 'none');
@@ -384,8 +385,8 @@ function wireOverlay(app: App): void {
     const outline = app.selectionOutline();
     const handles = app.lightHandles();
     const suns = app.sunMarkers();
-    const display = outline || handles || suns.length ? '' : 'none';
-    if (svg.style.display !== display) svg.style.display = display;
+    const shown = outline || handles || suns.length ? '' : 'none';
+    if (svg.style.display !== shown) svg.style.display = shown;
     drawSuns(suns);
     for (const circle of [dark, light]) place(circle, outline ? { x: outline.x, y: outline.y } : undefined, Math.max(4, (outline?.r ?? 0) + 3));
     place(moveHandle, handles?.move, 6);

@@ -11,11 +11,8 @@
 import type { PathTracer } from '../render/PathTracer';
 import type { ToneMap } from '../render/toneMaps';
 import type { Material, Scene } from '../scene/types';
-import { GpuFences, GpuQueue, GpuTimer } from './gpuWork';
-
-const PARAMS = ((globalThis as unknown as { __loopParams?: { mode?: string; inflight?: number; target?: number; flush?: boolean; statsMs?: number } }).__loopParams ?? {});
+import { GpuQueue, GpuTimer, pathsWithRoom, webglFences } from './gpuWork';
 import { PathBudget, type PathBudgetOptions } from './pathBudget';
-import { LoopTrace } from './loopTrace';
 
 export interface ViewSettings {
   exposure: number;
@@ -40,6 +37,16 @@ export interface RenderStats {
 
 /** GPU time per frame to aim at when it can be measured. */
 const GPU_BUDGET_MS = 35;
+/**
+ * Most work in flight (submitted, not seen done by its fence), in frames of
+ * the budget's target: one running and one waiting keep a GPU that runs
+ * behind busy (a fence is seen 2-15 ms after its work on SwiftShader), and
+ * what waits for the GPU (a compositor frame, a read-back) waits for at most
+ * that. Measured on a 1M-triangle mesh at 512x384 (bench/mesh-page-frames.ts):
+ * one frame kept no frame over 100 ms but cost half the samples per second;
+ * two, none over 100 ms (max 50-67 ms) at the rate of an unbounded queue.
+ */
+const FRAMES_IN_FLIGHT = 2;
 /**
  * Frame gap to aim at when GPU time cannot be measured: it also holds the
  * display and the page's own work, which the loop cannot tell apart.
@@ -81,8 +88,7 @@ function costKey(scene: Scene): string {
 
 export class RenderLoop {
   private timer: GpuTimer;
-  private readonly queue = new GpuQueue();
-  private readonly fences: GpuFences;
+  private readonly queue: GpuQueue;
   private readonly budget: PathBudget;
   private lastFrame = 0;
   private renderedLastFrame = false;
@@ -97,8 +103,6 @@ export class RenderLoop {
   private frameHandle = 0;
   private costScene: Scene | null = null;
   private costKey = '';
-  private trace: LoopTrace;
-  private lastStats = 0;
 
   constructor(
     private readonly tracer: PathTracer,
@@ -108,13 +112,12 @@ export class RenderLoop {
     private readonly onStats: (stats: RenderStats) => void,
   ) {
     this.timer = new GpuTimer(tracer.gl);
-    this.trace = new LoopTrace(tracer.gl);
-    this.fences = new GpuFences(tracer.gl);
+    this.queue = new GpuQueue(webglFences(tracer.gl));
     this.budget = new PathBudget(this.budgetOptions());
     tracer.pathsPerDraw = PATHS_PER_DRAW;
     tracer.on('contextlost', () => {
       this.timer.reset();
-      this.queue.reset();
+      this.queue.reset(true);
     });
     tracer.on('contextrestored', () => {
       this.timer = new GpuTimer(tracer.gl);
@@ -155,36 +158,24 @@ export class RenderLoop {
     if (count < this.lastCount || count === 0) this.restartClock();
     const lost = tracer.contextLost;
     const working = !lost && !this.settings.paused && !this.done;
-    const row = this.trace.on ? this.trace.begin(now, { dt }) : null;
-    const stampBegin = row ? this.trace.stamp() : null;
     if (working) {
       this.adapt(dt);
-      let paths = this.budget.paths;
-      if (this.settings.targetSpp > 0) paths = Math.min(paths, (this.settings.targetSpp - count) * tracer.width * tracer.height);
-      // While the GPU is predicted to be behind by a frame's work, this frame adds nothing.
       const target = this.budgetOptions().targetMs;
-      if (row) {
-        row.backlog = this.queue.backlog(now);
-        row.cost = this.budget.costPerPath ?? -1;
-        row.budget = paths;
-      }
-      if (PARAMS.mode === 'fence') {
-        this.fences.poll();
-        if (row) row.pendingMs = this.fences.pendingMs;
-        if (this.fences.pending > 0 && this.fences.pendingMs > ((PARAMS.inflight ?? 1) - 1) * target) paths = 0;
-      } else if (PARAMS.mode === 'fill') {
-        this.fences.poll();
-        if (row) row.pendingMs = this.fences.pendingMs;
-        const room = (PARAMS.inflight ?? 2) * target - this.fences.pendingMs;
-        const cost = this.budget.costPerPath;
-        if (cost !== null) paths = Math.min(paths, Math.floor(room / cost));
-        if (paths < Math.min(this.budget.paths, MIN_PATHS * 4)) paths = 0;
-      } else if (this.queue.backlog(now) > target) paths = 0;
+      const cost = this.budget.costPerPath;
+      // The budget's paths, as far as the work still in flight leaves room.
+      let paths = pathsWithRoom({
+        budgetPaths: this.budget.paths,
+        costPerPath: cost,
+        pendingMs: this.queue.poll(),
+        limitMs: FRAMES_IN_FLIGHT * target,
+        frameMs: target,
+        leastPaths: 4 * MIN_PATHS,
+      });
+      if (this.settings.targetSpp > 0) paths = Math.min(paths, (this.settings.targetSpp - count) * tracer.width * tracer.height);
       const before = tracer.sampleCount;
       this.lastPaths = paths > 0 ? this.timer.measure(() => tracer.renderPaths(paths)) : 0;
-      if (PARAMS.flush && this.lastPaths > 0) tracer.gl.flush();
-      this.queue.submitted(now, this.lastPaths * (this.budget.costPerPath ?? target / Math.max(1, this.lastPaths)));
-      if ((PARAMS.mode === 'fence' || PARAMS.mode === 'fill') && this.lastPaths > 0) this.fences.submitted(this.lastPaths * (this.budget.costPerPath ?? target / Math.max(1, this.lastPaths)));
+      // Before the cost is known, a frame counts as the target.
+      if (this.lastPaths > 0) this.queue.submitted(cost === null ? target : this.lastPaths * cost);
       this.elapsedMs += this.renderedLastFrame ? dt : 0;
       if (tracer.sampleCount !== before || this.previewDue(now)) this.displayDirty = true;
     }
@@ -193,18 +184,9 @@ export class RenderLoop {
       tracer.display({ exposure: this.settings.exposure, toneMap: this.settings.toneMap });
       this.displayDirty = false;
       this.lastDisplay = now;
-      if (row) row.display = 1;
-    }
-    if (row) {
-      row.paths = this.lastPaths;
-      this.trace.end(row, stampBegin, this.trace.stamp());
     }
     this.lastCount = tracer.sampleCount + tracer.sampleProgress;
-    const st = this.stats(now, lost);
-    if (!PARAMS.statsMs || now - this.lastStats >= PARAMS.statsMs || st.state !== 'rendering') {
-      this.lastStats = now;
-      this.onStats(st);
-    }
+    this.onStats(this.stats(now, lost));
   };
 
   /**
@@ -223,7 +205,7 @@ export class RenderLoop {
 
   private budgetOptions(): PathBudgetOptions {
     const pixels = this.tracer.width * this.tracer.height;
-    const targetMs = PARAMS.target ?? (this.timer.available ? GPU_BUDGET_MS : FRAME_GAP_BUDGET_MS);
+    const targetMs = this.timer.available ? GPU_BUDGET_MS : FRAME_GAP_BUDGET_MS;
     const startPaths = this.tracer.currentScene.meshes.length ? START_PATHS_MESHES : START_PATHS;
     return { targetMs, startPaths, minPaths: MIN_PATHS, maxPaths: MAX_SAMPLES_PER_FRAME * pixels };
   }
