@@ -97,15 +97,24 @@ export function webglFences(gl: WebGL2RenderingContext): FenceSource<WebGLSync> 
  * input's redraw wait at most for that.
  */
 export class GpuQueue<F = WebGLSync> {
-  private inflight: { fence: F; ms: number }[] = [];
+  private inflight: { fence: F; ms: number; polls: number }[] = [];
 
-  constructor(private readonly fences: FenceSource<F>) {}
+  /**
+   * @param maxPolls polls after which a fence not seen passed is taken as
+   * passed anyway: a browser whose fences never signal must not stop the
+   * loop for good (600 polls are 10 s of frames at 60 Hz; a frame of
+   * SwiftShader's slowest work, a compile at the first draw, is a few seconds).
+   */
+  constructor(
+    private readonly fences: FenceSource<F>,
+    private readonly maxPolls = 600,
+  ) {}
 
   /** Forgets the work the GPU is seen to have done; returns the milliseconds of work still in flight. */
   poll(): number {
     // Fences pass in order: the newest one passed means all before it passed too.
     for (let i = this.inflight.length - 1; i >= 0; i--) {
-      if (!this.fences.passed(this.inflight[i].fence)) continue;
+      if (!this.fences.passed(this.inflight[i].fence) && ++this.inflight[i].polls <= this.maxPolls) continue;
       for (const { fence } of this.inflight.splice(0, i + 1)) this.fences.remove(fence);
       break;
     }
@@ -120,7 +129,7 @@ export class GpuQueue<F = WebGLSync> {
   /** Work predicted to take `ms` was just submitted. Without a fence it is not counted (nothing would say when it is done). */
   submitted(ms: number): void {
     const fence = this.fences.insert();
-    if (fence !== null) this.inflight.push({ fence, ms });
+    if (fence !== null) this.inflight.push({ fence, ms, polls: 0 });
   }
 
   /** Forgets the work in flight; its fences are freed unless they died with a lost context. */

@@ -44,7 +44,9 @@ const GPU_BUDGET_MS = 35;
  * what waits for the GPU (a compositor frame, a read-back) waits for at most
  * that. Measured on a 1M-triangle mesh at 512x384 (bench/mesh-page-frames.ts):
  * one frame kept no frame over 100 ms but cost half the samples per second;
- * two, none over 100 ms (max 50-67 ms) at the rate of an unbounded queue.
+ * two, none over 100 ms (max 50-67 ms) at the rate of an unbounded queue
+ * (the seed scene: 0.9-0.96x of it; three frames gave the seed scene its
+ * rate back but the mesh frames of 83-183 ms; frame-pacing-2026-12-06.md).
  */
 const FRAMES_IN_FLIGHT = 2;
 /**

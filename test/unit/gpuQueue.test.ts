@@ -143,6 +143,12 @@ describe('GpuQueue and pathsWithRoom', () => {
     queue.submitted(5);
     queue.reset(true); // a lost context took its fences with it
     expect(fences.live.size).toBe(1);
+    // A fence that never signals is given up after maxPolls polls (with all before it).
+    const stuck = new GpuQueue(fences, 3);
+    stuck.submitted(7);
+    stuck.submitted(8);
+    for (let i = 0; i < 3; i++) expect(stuck.poll()).toBe(15);
+    expect(stuck.poll()).toBe(0);
     // Work without a fence is not counted: nothing would say when it is done.
     const none = new GpuQueue<number>({ insert: () => null, passed: () => true, remove: () => undefined });
     none.submitted(50);
