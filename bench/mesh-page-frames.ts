@@ -8,8 +8,11 @@
  * maximum, samples per second (with the fraction of the sample in progress,
  * where the page tells it) and the render loop's paths per frame. Run after
  * `npm run build:web`:
- *   npx tsx bench/mesh-page-frames.ts [--triangles 1000000 | --file model.glb] [--seconds 15] [--paused] [--timeline] [--web DIR]
+ *   npx tsx bench/mesh-page-frames.ts [--triangles 1000000 | --file model.glb] [--seconds 15] [--paused] [--timeline] [--web DIR] [--chrome-trace FILE]
  * (--timeline: lists each frame over 100 ms while rendering the mesh, with the frames around it.)
+ * (--chrome-trace: a Chromium trace of 4 s of rendering the mesh, before the measured seconds: its GPU
+ * process shows each compositor frame's SkiaOutputSurfaceImplOnGpu::SwapBuffers, which headless reads the
+ * page back after all GPU work queued before it.)
  * (--web: another build's dist/web, to compare.)
  * (--paused: the render is paused while the model loads, to see the page's own work.)
  */
@@ -66,7 +69,7 @@ async function gaps(page: Page, from: number, to: number): Promise<string> {
   if (!d.length) return 'no frames';
   const q = (p: number) => d[Math.min(d.length - 1, Math.floor(p * d.length))].toFixed(0);
   const over = d.filter((x) => x > 100).length;
-  return `${d.length} frames, median ${q(0.5)} ms, p95 ${q(0.95)} ms, p99 ${q(0.99)} ms, max ${d[d.length - 1].toFixed(0)} ms, ${over} over 100 ms`;
+  return `${d.length} frames, median ${q(0.5)} ms, p95 ${q(0.95)} ms, p99 ${q(0.99)} ms, max ${d[d.length - 1].toFixed(0)} ms, ${over} over 100 ms (${((100 * over) / d.length).toFixed(1)}%)`;
 }
 
 /** Samples per pixel the page has: complete ones plus the fraction of the one in progress where the page tells it. */
@@ -126,8 +129,15 @@ async function main(argv: string[]): Promise<void> {
     }
     // A textured, normal-mapped model compiles a program of its own first (minutes on SwiftShader).
     await page.waitForFunction(() => Number(document.querySelector('[data-testid="spp"]')?.textContent) >= 1, undefined, { timeout: 900_000 });
-    const t3 = await now(page);
+    let t3 = await now(page);
     console.log(`first sample of the mesh after upload: ${((t3 - t2) / 1000).toFixed(1)} s; ${await gaps(page, t2, t3)}`);
+    const chromeTrace = option(argv, 'chrome-trace', '');
+    if (chromeTrace) {
+      await browser.startTracing(page, { path: chromeTrace, categories: ['toplevel', 'gpu', 'gpu.angle', 'viz', 'cc', 'blink', 'devtools.timeline'] });
+      await page.waitForTimeout(4000);
+      await browser.stopTracing();
+      t3 = await now(page); // the measured seconds start after the trace
+    }
     s0 = await samples(page);
     await page.waitForTimeout(seconds * 1000);
     const t4 = await now(page);

@@ -368,18 +368,25 @@ function wireOverlay(app: App): void {
   const aimHandle = element('circle', 'handle handle-aim', 'aim-handle');
   svg.append(dark, light, aimLineDark, aimLine, moveHandle, aimHandle);
   const drawSuns = sunMarkerLayer(svg, dark, (index) => app.select({ kind: 'light', index }), (index) => objectLabel(app.scene, { kind: 'light', index }) ?? '');
+  // draw() runs every frame: it writes only what changed. A write, even of the same value, repaints the page,
+  // and every repaint is a compositor frame; headless on SwiftShader, a compositor frame reads the page back
+  // (~17 ms at 1400x1000) after all GPU work queued before it, path tracing included (bench/results/frame-pacing-2026-12-06.md).
+  const set = (e: Element, name: string, value: string) => {
+    if (e.getAttribute(name) !== value) e.setAttribute(name, value);
+  };
   const place = (circle: Element, at: { x: number; y: number } | undefined, r: number) => {
-    circle.setAttribute('display', at ? 'inline' : 'none');
+    set(circle, 'display', at ? 'inline' : 'none');
     if (!at) return;
-    circle.setAttribute('cx', at.x.toFixed(1));
-    circle.setAttribute('cy', at.y.toFixed(1));
-    circle.setAttribute('r', String(r));
+    set(circle, 'cx', at.x.toFixed(1));
+    set(circle, 'cy', at.y.toFixed(1));
+    set(circle, 'r', String(r));
   };
   const draw = () => {
     const outline = app.selectionOutline();
     const handles = app.lightHandles();
     const suns = app.sunMarkers();
-    svg.style.display = outline || handles || suns.length ? '' : 'none';
+    const shown = outline || handles || suns.length ? '' : 'none';
+    if (svg.style.display !== shown) svg.style.display = shown;
     drawSuns(suns);
     for (const circle of [dark, light]) place(circle, outline ? { x: outline.x, y: outline.y } : undefined, Math.max(4, (outline?.r ?? 0) + 3));
     place(moveHandle, handles?.move, 6);
@@ -387,12 +394,12 @@ function wireOverlay(app: App): void {
     const from = handles?.origin;
     const to = handles?.aim;
     for (const line of [aimLineDark, aimLine]) {
-      line.setAttribute('display', from && to ? 'inline' : 'none');
+      set(line, 'display', from && to ? 'inline' : 'none');
       if (!from || !to) continue;
-      line.setAttribute('x1', from.x.toFixed(1));
-      line.setAttribute('y1', from.y.toFixed(1));
-      line.setAttribute('x2', to.x.toFixed(1));
-      line.setAttribute('y2', to.y.toFixed(1));
+      set(line, 'x1', from.x.toFixed(1));
+      set(line, 'y1', from.y.toFixed(1));
+      set(line, 'x2', to.x.toFixed(1));
+      set(line, 'y2', to.y.toFixed(1));
     }
   };
   app.onChange(draw);

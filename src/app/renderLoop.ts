@@ -11,7 +11,7 @@
 import type { PathTracer } from '../render/PathTracer';
 import type { ToneMap } from '../render/toneMaps';
 import type { Material, Scene } from '../scene/types';
-import { GpuQueue, GpuTimer } from './gpuWork';
+import { GpuQueue, GpuTimer, pathsWithRoom, webglFences } from './gpuWork';
 import { PathBudget, type PathBudgetOptions } from './pathBudget';
 
 export interface ViewSettings {
@@ -37,6 +37,18 @@ export interface RenderStats {
 
 /** GPU time per frame to aim at when it can be measured. */
 const GPU_BUDGET_MS = 35;
+/**
+ * Most work in flight (submitted, not seen done by its fence), in frames of
+ * the budget's target: one running and one waiting keep a GPU that runs
+ * behind busy (a fence is seen 2-15 ms after its work on SwiftShader), and
+ * what waits for the GPU (a compositor frame, a read-back) waits for at most
+ * that. Measured on a 1M-triangle mesh at 512x384 (bench/mesh-page-frames.ts):
+ * one frame kept no frame over 100 ms but cost half the samples per second;
+ * two, none over 100 ms (max 50-67 ms) at the rate of an unbounded queue
+ * (the seed scene: 0.9-0.96x of it; three frames gave the seed scene its
+ * rate back but the mesh frames of 83-183 ms; frame-pacing-2026-12-06.md).
+ */
+const FRAMES_IN_FLIGHT = 2;
 /**
  * Frame gap to aim at when GPU time cannot be measured: it also holds the
  * display and the page's own work, which the loop cannot tell apart.
@@ -78,7 +90,7 @@ function costKey(scene: Scene): string {
 
 export class RenderLoop {
   private timer: GpuTimer;
-  private readonly queue = new GpuQueue();
+  private readonly queue: GpuQueue;
   private readonly budget: PathBudget;
   private lastFrame = 0;
   private renderedLastFrame = false;
@@ -102,11 +114,12 @@ export class RenderLoop {
     private readonly onStats: (stats: RenderStats) => void,
   ) {
     this.timer = new GpuTimer(tracer.gl);
+    this.queue = new GpuQueue(webglFences(tracer.gl));
     this.budget = new PathBudget(this.budgetOptions());
     tracer.pathsPerDraw = PATHS_PER_DRAW;
     tracer.on('contextlost', () => {
       this.timer.reset();
-      this.queue.reset();
+      this.queue.reset(true);
     });
     tracer.on('contextrestored', () => {
       this.timer = new GpuTimer(tracer.gl);
@@ -149,14 +162,22 @@ export class RenderLoop {
     const working = !lost && !this.settings.paused && !this.done;
     if (working) {
       this.adapt(dt);
-      let paths = this.budget.paths;
-      if (this.settings.targetSpp > 0) paths = Math.min(paths, (this.settings.targetSpp - count) * tracer.width * tracer.height);
-      // While the GPU is predicted to be behind by a frame's work, this frame adds nothing.
       const target = this.budgetOptions().targetMs;
-      if (this.queue.backlog(now) > target) paths = 0;
+      const cost = this.budget.costPerPath;
+      // The budget's paths, as far as the work still in flight leaves room.
+      let paths = pathsWithRoom({
+        budgetPaths: this.budget.paths,
+        costPerPath: cost,
+        pendingMs: this.queue.poll(),
+        limitMs: FRAMES_IN_FLIGHT * target,
+        frameMs: target,
+        leastPaths: 4 * MIN_PATHS,
+      });
+      if (this.settings.targetSpp > 0) paths = Math.min(paths, (this.settings.targetSpp - count) * tracer.width * tracer.height);
       const before = tracer.sampleCount;
       this.lastPaths = paths > 0 ? this.timer.measure(() => tracer.renderPaths(paths)) : 0;
-      this.queue.submitted(now, this.lastPaths * (this.budget.costPerPath ?? target / Math.max(1, this.lastPaths)));
+      // Before the cost is known, a frame counts as the target.
+      if (this.lastPaths > 0) this.queue.submitted(cost === null ? target : this.lastPaths * cost);
       this.elapsedMs += this.renderedLastFrame ? dt : 0;
       if (tracer.sampleCount !== before || this.previewDue(now)) this.displayDirty = true;
     }
