@@ -23,7 +23,7 @@
  */
 import type { LightReach } from '../lights/kind';
 import type { Vec3 } from '../scene/types';
-import { buildAliasTable } from './aliasTable';
+import { AliasBuilder, buildAliasTable } from './aliasTable';
 
 /** Share of the uniform choice among the emitters that can light the cell (measured best of 0.1, 0.25, 0.5 on 2026-12-02's per-point version). */
 export const UNIFORM_SHARE = 0.25;
@@ -83,10 +83,24 @@ export function reachWeight(reach: LightReach, center: Vec3, radius: number): nu
 
 /** A cell's probabilities: its weights normalized, mixed with a uniform choice among the emitters it can see; the global ones where it sees none. */
 export function cellProbabilities(weights: readonly number[], global: readonly number[]): number[] {
-  const total = weights.reduce((sum, w) => sum + w, 0);
-  const lit = weights.filter((w) => w > 0).length;
-  if (!(total > 0) || !Number.isFinite(total)) return [...global];
-  return weights.map((w) => (w > 0 ? (1 - UNIFORM_SHARE) * (w / total) + UNIFORM_SHARE / lit : 0));
+  const probabilities = [...weights];
+  mixCellWeights(probabilities, global);
+  return probabilities;
+}
+
+/** cellProbabilities in place: `weights` become the cell's probabilities. */
+function mixCellWeights(weights: { length: number; [i: number]: number }, global: readonly number[]): void {
+  let total = 0;
+  let lit = 0;
+  for (let i = 0; i < weights.length; i++) {
+    total += weights[i];
+    if (weights[i] > 0) lit++;
+  }
+  const fallback = !(total > 0) || !Number.isFinite(total);
+  for (let i = 0; i < weights.length; i++) {
+    const mixed = weights[i] > 0 ? (1 - UNIFORM_SHARE) * (weights[i] / total) + UNIFORM_SHARE / lit : 0;
+    weights[i] = fallback ? global[i] : mixed;
+  }
 }
 
 /** Cells per axis for a box: about cubic cells, at most MAX_CELLS (and `budget`) in all. */
@@ -112,59 +126,29 @@ function writeTable(texels: Float32Array, first: number, probabilities: readonly
 }
 
 /**
- * Working arrays of a cell's table, reused from cell to cell: a grid of
- * 4096 cells is rebuilt on every edit of a light (dragging one repacks the
- * scene each frame), so a cell allocates nothing.
+ * A cell's table, on arrays reused from cell to cell: a grid of 4096 cells is
+ * rebuilt on every edit of a light (dragging one repacks the scene each
+ * frame), so a cell allocates nothing.
  */
 class CellTables {
   private readonly weights: Float64Array;
-  private readonly scaled: Float64Array;
-  private readonly small: Int32Array;
-  private readonly large: Int32Array;
+  private readonly alias: AliasBuilder;
 
   constructor(private readonly count: number) {
     this.weights = new Float64Array(count);
-    this.scaled = new Float64Array(count);
-    this.small = new Int32Array(count);
-    this.large = new Int32Array(count);
+    this.alias = new AliasBuilder(count);
   }
 
-  /** Writes the table of the cell (center, radius) at texel `first`: weights, the uniform share, then Vose's alias construction. */
+  /** Writes the table of the cell (center, radius) at texel `first`. */
   write(texels: Float32Array, first: number, reaches: readonly LightReach[], center: Vec3, radius: number, global: readonly number[]): void {
-    const { count, weights, scaled, small, large } = this;
-    let total = 0;
-    let lit = 0;
+    const { count, weights, alias } = this;
+    for (let i = 0; i < count; i++) weights[i] = reachWeight(reaches[i], center, radius);
+    mixCellWeights(weights, global);
+    alias.build(weights);
     for (let i = 0; i < count; i++) {
-      weights[i] = reachWeight(reaches[i], center, radius);
-      total += weights[i];
-      if (weights[i] > 0) lit++;
+      const a = alias.alias[i];
+      texels.set([alias.threshold[i], a, weights[i], weights[a]], (first + i) * 4);
     }
-    const fallback = !(total > 0) || !Number.isFinite(total);
-    for (let i = 0; i < count; i++) {
-      const mixed = weights[i] > 0 ? (1 - UNIFORM_SHARE) * (weights[i] / total) + UNIFORM_SHARE / lit : 0;
-      weights[i] = fallback ? global[i] : mixed;
-    }
-    let ns = 0;
-    let nl = 0;
-    for (let i = 0; i < count; i++) {
-      scaled[i] = weights[i] * count;
-      const at = (first + i) * 4;
-      texels[at] = 1;
-      texels[at + 1] = i;
-      texels[at + 2] = weights[i];
-      if (scaled[i] < 1) small[ns++] = i;
-      else large[nl++] = i;
-    }
-    while (ns > 0 && nl > 0) {
-      const s = small[--ns];
-      const l = large[nl - 1];
-      texels[(first + s) * 4] = scaled[s];
-      texels[(first + s) * 4 + 1] = l;
-      scaled[l] -= 1 - scaled[s];
-      if (scaled[l] < 1) small[ns++] = large[--nl];
-    }
-    // What is left keeps itself (threshold 1, up to rounding). Then each entry's alias's probability.
-    for (let i = 0; i < count; i++) texels[(first + i) * 4 + 3] = weights[texels[(first + i) * 4 + 1]];
   }
 }
 
