@@ -8,6 +8,7 @@ import type { SceneAssets } from '../../scene/assets';
 import { applyMatrix, meshToWorldMatrix, transformMesh } from '../../scene/mesh';
 import type { Scene as SceneModel, TriangleMesh, Vec3 } from '../../scene/types';
 import type { Box } from '../lightChoice';
+import { meshBounds } from '../../scene/picking';
 import { resolveFileMaterials, type RenderScene as Scene } from '../../scene/fileMaterials';
 import { groupMeshes, trianglesIn, type BvhMeshInput, type MeshGroups, type PackedBvh } from '../bvh';
 
@@ -40,41 +41,25 @@ export interface MeshSize {
   box: Box;
 }
 
-/** The bounding box of positions (x, y, z, ...). */
-function positionsBox(p: ArrayLike<number>): Box {
+/**
+ * A mesh's world box: the box of its file's box (meshBounds, computed once
+ * per file) through the column-major matrix `toWorld`, corner by corner. A
+ * copy's and an instance's are the same, so the emitter-choice grid does
+ * not depend on how a mesh is stored.
+ */
+function worldBox(data: TriangleMesh, toWorld: Float64Array): Box {
+  const local = meshBounds(data);
   const min: Vec3 = [Infinity, Infinity, Infinity];
   const max: Vec3 = [-Infinity, -Infinity, -Infinity];
-  for (let i = 0; i < p.length; i += 3) {
-    for (let k = 0; k < 3; k++) {
-      min[k] = Math.min(min[k], p[i + k]);
-      max[k] = Math.max(max[k], p[i + k]);
+  for (let c = 0; c < 8; c++) {
+    const p = [c & 1 ? local.max[0] : local.min[0], c & 2 ? local.max[1] : local.min[1], c & 4 ? local.max[2] : local.min[2]];
+    for (let row = 0; row < 3; row++) {
+      const v = toWorld[row] * p[0] + toWorld[4 + row] * p[1] + toWorld[8 + row] * p[2] + toWorld[12 + row];
+      min[row] = Math.min(min[row], v);
+      max[row] = Math.max(max[row], v);
     }
   }
   return { min, max };
-}
-
-/** Object-space boxes of decoded files, computed once per file. */
-const fileBoxes = new WeakMap<TriangleMesh, Box>();
-
-/** The world box of `box` through the column-major matrix m: the box of its 8 corners. */
-function transformedBox(box: Box, m: Float64Array): Box {
-  const corners: number[] = [];
-  for (let c = 0; c < 8; c++) {
-    const p = [c & 1 ? box.max[0] : box.min[0], c & 2 ? box.max[1] : box.min[1], c & 4 ? box.max[2] : box.min[2]];
-    for (let row = 0; row < 3; row++) corners.push(m[row] * p[0] + m[4 + row] * p[1] + m[8 + row] * p[2] + m[12 + row]);
-  }
-  return positionsBox(corners);
-}
-
-/**
- * A mesh's world box: its file's box, transformed (a copy's and an
- * instance's are the same, so the emitter-choice grid does not depend on
- * how a mesh is stored).
- */
-function worldBox(data: TriangleMesh, toWorld: Float64Array): Box {
-  let local = fileBoxes.get(data);
-  if (!local) fileBoxes.set(data, (local = positionsBox(data.positions)));
-  return transformedBox(local, toWorld);
 }
 
 /**
