@@ -145,19 +145,24 @@ export class TracePass {
     }
   }
 
-  /** The emitter-choice tables, in a texture of as many rows as they need (a new one only when they need more). */
+  /**
+   * The emitter-choice tables, in a texture of as many rows as they need (a
+   * new one only when they need more): whole rows, then the last one's
+   * start, straight from the packed array (no padded copy on every edit).
+   */
   private uploadLightChoice(texels: Float32Array): void {
     const gl = this.gl;
-    const rows = Math.max(1, Math.ceil(texels.length / 4 / LIGHT_CHOICE_WIDTH));
-    const data = new Float32Array(rows * LIGHT_CHOICE_WIDTH * 4);
-    data.set(texels);
-    if (this.lightChoice && this.lightChoice.rows >= rows) {
-      gl.bindTexture(gl.TEXTURE_2D, this.lightChoice.texture);
-      gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, LIGHT_CHOICE_WIDTH, rows, gl.RGBA, gl.FLOAT, data);
-    } else {
+    const count = texels.length / 4;
+    const fullRows = Math.floor(count / LIGHT_CHOICE_WIDTH);
+    const rest = count - fullRows * LIGHT_CHOICE_WIDTH;
+    const rows = Math.max(1, fullRows + (rest > 0 ? 1 : 0));
+    if (!this.lightChoice || this.lightChoice.rows < rows) {
       if (this.lightChoice) gl.deleteTexture(this.lightChoice.texture);
-      this.lightChoice = { texture: createDataTexture(gl, LIGHT_CHOICE_WIDTH, rows, data), rows };
+      this.lightChoice = { texture: createDataTexture(gl, LIGHT_CHOICE_WIDTH, rows), rows };
     }
+    gl.bindTexture(gl.TEXTURE_2D, this.lightChoice.texture);
+    if (fullRows > 0) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, LIGHT_CHOICE_WIDTH, fullRows, gl.RGBA, gl.FLOAT, texels.subarray(0, fullRows * LIGHT_CHOICE_WIDTH * 4));
+    if (rest > 0) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, fullRows, rest, 1, gl.RGBA, gl.FLOAT, texels.subarray(fullRows * LIGHT_CHOICE_WIDTH * 4));
     gl.bindTexture(gl.TEXTURE_2D, null);
   }
 
