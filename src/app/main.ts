@@ -368,18 +368,13 @@ function wireOverlay(app: App): void {
   const aimHandle = element('circle', 'handle handle-aim', 'aim-handle');
   svg.append(dark, light, aimLineDark, aimLine, moveHandle, aimHandle);
   const drawSuns = sunMarkerLayer(svg, dark, (index) => app.select({ kind: 'light', index }), (index) => objectLabel(app.scene, { kind: 'light', index }) ?? '');
-  // draw() runs every frame: it writes only what changed. A write, even of the same value, repaints the page,
-  // and every repaint is a compositor frame; headless on SwiftShader, a compositor frame reads the page back
-  // (~17 ms at 1400x1000) after all GPU work queued before it, path tracing included (bench/results/frame-pacing-2026-12-06.md).
-  const set = (e: Element, name: string, value: string) => {
-    if (e.getAttribute(name) !== value) e.setAttribute(name, value);
-  };
+  // draw() runs every frame: it writes only what changed (setIfChanged).
   const place = (circle: Element, at: { x: number; y: number } | undefined, r: number) => {
-    set(circle, 'display', at ? 'inline' : 'none');
+    setIfChanged(circle, 'display', at ? 'inline' : 'none');
     if (!at) return;
-    set(circle, 'cx', at.x.toFixed(1));
-    set(circle, 'cy', at.y.toFixed(1));
-    set(circle, 'r', String(r));
+    setIfChanged(circle, 'cx', at.x.toFixed(1));
+    setIfChanged(circle, 'cy', at.y.toFixed(1));
+    setIfChanged(circle, 'r', String(r));
   };
   const draw = () => {
     const outline = app.selectionOutline();
@@ -394,12 +389,12 @@ function wireOverlay(app: App): void {
     const from = handles?.origin;
     const to = handles?.aim;
     for (const line of [aimLineDark, aimLine]) {
-      set(line, 'display', from && to ? 'inline' : 'none');
+      setIfChanged(line, 'display', from && to ? 'inline' : 'none');
       if (!from || !to) continue;
-      set(line, 'x1', from.x.toFixed(1));
-      set(line, 'y1', from.y.toFixed(1));
-      set(line, 'x2', to.x.toFixed(1));
-      set(line, 'y2', to.y.toFixed(1));
+      setIfChanged(line, 'x1', from.x.toFixed(1));
+      setIfChanged(line, 'y1', from.y.toFixed(1));
+      setIfChanged(line, 'x2', to.x.toFixed(1));
+      setIfChanged(line, 'y2', to.y.toFixed(1));
     }
   };
   app.onChange(draw);
@@ -425,6 +420,17 @@ const SUN_RAYS = Array.from({ length: 8 }, (_, k) => {
  * selects its light (`choose`), as a click does. Returns the function that
  * places them.
  */
+/**
+ * Sets an attribute only when its value changes. The overlay is drawn every
+ * frame, and a write, even of the same value, repaints the page: every
+ * repaint is a compositor frame, which headless on SwiftShader reads the page
+ * back (~17 ms at 1400x1000) after all GPU work queued before it, path
+ * tracing included (bench/results/frame-pacing-2026-12-06.md).
+ */
+function setIfChanged(e: Element, name: string, value: string): void {
+  if (e.getAttribute(name) !== value) e.setAttribute(name, value);
+}
+
 function sunMarkerLayer(
   svg: SVGSVGElement,
   below: Element,
@@ -457,12 +463,10 @@ function sunMarkerLayer(
     while (markers.length < suns.length) markers.push(newMarker());
     while (markers.length > suns.length) markers.pop()!.remove();
     suns.forEach((sun, i) => {
-      // Called every frame: write only what changed (a write makes the page repaint).
-      const transform = `translate(${sun.x.toFixed(1)} ${sun.y.toFixed(1)})`;
-      if (markers[i].getAttribute('transform') !== transform) markers[i].setAttribute('transform', transform);
-      if (markers[i].dataset.light !== String(sun.index)) markers[i].dataset.light = String(sun.index);
-      const name = label(sun.index);
-      if (markers[i].getAttribute('aria-label') !== name) markers[i].setAttribute('aria-label', name);
+      // Called every frame: write only what changed.
+      setIfChanged(markers[i], 'transform', `translate(${sun.x.toFixed(1)} ${sun.y.toFixed(1)})`);
+      setIfChanged(markers[i], 'data-light', String(sun.index));
+      setIfChanged(markers[i], 'aria-label', label(sun.index));
     });
   };
 }
