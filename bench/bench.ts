@@ -1,7 +1,7 @@
 /**
  * `npm run bench`: the convergence benchmark (see bench/run.ts).
  *   npm run bench -- [--scenes seed,glossy] [--times 2,5,10] [--scale 1] [--target 0.02]
- *                    [--samplers kronecker,independent] [--no-mitsuba] [--quick] [--no-save] [--json]
+ *                    [--samplers kronecker,independent,adaptive] [--no-mitsuba] [--quick] [--no-save] [--json]
  * --quick: 0.5 s per scene, no Mitsuba, no result file: only checks that the benchmark runs (CI).
  * Results go to bench/results/bench-<date>.json.
  */
@@ -35,7 +35,7 @@ function parse(argv: string[]): { options: BenchOptions; save: boolean; json: bo
         save = false;
         break;
       default:
-        console.error(`unknown option ${arg}\nusage: bench [--scenes a,b] [--times 2,5,10] [--scale N] [--target 0.02] [--seed N] [--samplers kronecker,independent] [--mitsuba|--no-mitsuba] [--quick] [--no-save] [--json]`);
+        console.error(`unknown option ${arg}\nusage: bench [--scenes a,b] [--times 2,5,10] [--scale N] [--target 0.02] [--seed N] [--samplers kronecker,independent,adaptive] [--mitsuba|--no-mitsuba] [--quick] [--no-save] [--json]`);
         process.exit(2);
     }
   }

@@ -17,6 +17,9 @@ import { decodePfm } from '../src/image/pfm';
 import { relativeMse, type LinearImage } from '../src/node/imageMetrics';
 import { openRenderSession, type LoadOptions, type RenderSession } from '../src/node/session';
 import type { SamplerKind } from '../src/render/sampling';
+
+/** What a row of ours runs: a sampler, or 'adaptive' (the Kronecker sampler with PathTracerOptions.adaptive). */
+export type BenchSampler = SamplerKind | 'adaptive';
 import { bakedTextureFile, exportMitsuba, meshPlyFile } from '../src/scene/mitsuba';
 import { resolveFileMaterials } from '../src/scene/fileMaterials';
 import type { SceneAssets } from '../src/scene/assets';
@@ -41,7 +44,7 @@ export interface BenchOptions {
   mitsuba?: boolean | 'auto';
   seed?: number;
   /** Samplers to run, each a row per scene, interleaved (default ['kronecker']; A/B: kronecker,independent). */
-  samplers?: SamplerKind[];
+  samplers?: BenchSampler[];
   log?: (line: string) => void;
 }
 
@@ -61,7 +64,7 @@ export interface RendererRun {
 
 export interface SceneRow {
   scene: string;
-  sampler: SamplerKind;
+  sampler: BenchSampler;
   width: number;
   height: number;
   maxBounces: number;
@@ -142,13 +145,15 @@ export async function benchOurs(
   times: number[],
   target: number,
   seed: number,
-  sampler: SamplerKind,
+  sampler: BenchSampler,
   files: Record<string, Uint8Array>,
 ): Promise<{ run: RendererRun; startupSeconds: number; textureBytes: number }> {
   // Load and a first draw: shader compile, link and SwiftShader's JIT (timed
   // as startup), then a fresh accumulation on the same context.
   const t0 = performance.now();
-  const loaded = (await session.load(scene, { ...size, seed, sampler } as LoadOptions, files)) as { textureBytes?: number } | undefined;
+  const adaptive = sampler === 'adaptive';
+  const options: LoadOptions = { ...size, seed, sampler: adaptive ? 'kronecker' : sampler, adaptive };
+  const loaded = (await session.load(scene, options, files)) as { textureBytes?: number } | undefined;
   await session.render(1);
   const startupSeconds = (performance.now() - t0) / 1000;
   await session.reset();

@@ -31,6 +31,8 @@ export interface RawRenderOptions {
   tonemap?: string;
   /** --denoise (commander gives true when present). */
   denoise?: boolean;
+  /** --adaptive (commander gives true when present). */
+  adaptive?: boolean;
   /** --aov ALBEDO.pfm,NORMAL.pfm */
   aov?: string;
   /** A model file's glTF camera: --camera (true, the first) or --camera N (src/cli/model.ts). */
@@ -58,6 +60,8 @@ export interface RenderArgs {
   toneMap: string;
   /** Denoise the final image (PNG and --hdr); default false: the unbiased estimate. */
   denoise: boolean;
+  /** Adaptive sampling (PathTracerOptions.adaptive); default false. */
+  adaptive: boolean;
   /** Also write the albedo and normal guides as PFM. */
   aov?: AovPaths;
 }
@@ -130,7 +134,7 @@ export function parseRenderArgs(raw: RawRenderOptions, tonemaps: readonly string
   }
   const aov = raw.aov === undefined ? undefined : attempt(() => parseAovPaths(raw.aov!));
   if (problems.length > 0) throw usageError(problems);
-  return { budget: budget!, seed: seed!, width, height, exposure: exposure!, toneMap: tonemap, denoise: raw.denoise === true, aov };
+  return { budget: budget!, seed: seed!, width, height, exposure: exposure!, toneMap: tonemap, denoise: raw.denoise === true, adaptive: raw.adaptive === true, aov };
 }
 
 /** `albedo.pfm,normal.pfm`: exactly two different, non-empty paths, albedo first. */

@@ -239,7 +239,7 @@ async function renderImages(
 ): Promise<RenderedImages> {
   progress.status('loading scene and compiling the shader...');
   // Decoded here already (loadSceneFiles): the page takes the arrays and does not decode the files again.
-  const loaded = await session.load(scene, { width: size.width, height: size.height, seed: args.seed }, {}, assets);
+  const loaded = await session.load(scene, { width: size.width, height: size.height, seed: args.seed, ...(args.adaptive ? { adaptive: true } : {}) }, {}, assets);
   // What the mesh decoders ignored (a glTF's unread extensions...), then the page's own.
   const warnings = [...meshWarnings(scene, assets).map((w) => `${w.path}: ${w.message}`), ...(loaded.warnings ?? [])];
   mark('scene loaded in the page');

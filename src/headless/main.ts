@@ -29,6 +29,8 @@ export interface LoadOptions {
   seed: number;
   sampler?: SamplerKind;
   russianRoulette?: boolean;
+  /** Adaptive sampling (PathTracerOptions.adaptive). */
+  adaptive?: boolean;
   /** Accumulate the denoiser's guides while rendering (PathTracerOptions.aovs). */
   aovs?: boolean;
 }
@@ -200,7 +202,7 @@ const api: HeadlessApi = {
       return bytesFromBase64(files[name]);
     }, known, decodeImageOffThread);
     rememberFiles(files, assets);
-    const kind = JSON.stringify([options.sampler ?? 'kronecker', options.russianRoulette ?? false]);
+    const kind = JSON.stringify([options.sampler ?? 'kronecker', options.russianRoulette ?? false, options.adaptive ?? false]);
     if (!reuseTracer(scene, options, assets, kind)) {
       tracer?.dispose();
       tracer = new PathTracer(undefined, scene, { ...options, assets });

@@ -24,6 +24,7 @@ import { TracePass } from './passes/trace';
 import type { PrebuiltBvh } from './geometry/world';
 import type { SamplerKind } from './sampling';
 import { TileLayout, type TileRun } from './tiles';
+import { ADAPTIVE_START, AdaptiveCells, cellGrid, meanImage } from './adaptive';
 
 export interface PathTracerOptions {
   /** Render resolution; defaults to the scene's image size. */
@@ -41,6 +42,16 @@ export interface PathTracerOptions {
    * SwiftShader it saves no time and adds variance (see integrator.glsl).
    */
   russianRoulette?: boolean;
+  /**
+   * Adaptive sampling (render/adaptive.ts): after ADAPTIVE_START (4) samples
+   * per pixel, render(n) spends n samples per pixel's worth of paths where
+   * the image is noisiest, cell by cell of 16x16 pixels; sampleCount is
+   * then the mean per pixel. Less error for the same time where the noise
+   * is uneven (a caustic, a bright reflection); the image then depends on
+   * how the samples were asked for, not only on the seed. Default false.
+   * renderPaths draws whole samples with it; accumulation() is null.
+   */
+  adaptive?: boolean;
   /** Keep the canvas contents after compositing (needed to screenshot it). Default false. */
   preserveDrawingBuffer?: boolean;
   /** The decoded files the scene names (`loadSceneAssets`); needed when it has a map or meshes. */
@@ -89,6 +100,8 @@ interface Resources {
   aov: AovPass | null;
   /** A linear image shown instead of the running mean (showImage), or null. */
   shown: FloatTarget | null;
+  /** The adaptive accumulation's mean, for display (created on first use). */
+  mean: FloatTarget | null;
 }
 
 /**
@@ -109,6 +122,9 @@ export class PathTracer {
   private seed: number;
   private readonly sampler: SamplerKind;
   private readonly russianRoulette: boolean;
+  private readonly adaptive: boolean;
+  /** Adaptive sampling's cells once it has started (null: every pixel has `samples`). */
+  private cells: AdaptiveCells | null = null;
   private keepAovs: boolean;
   private aovSamples = AOV_SAMPLES;
   private size: { width: number; height: number };
@@ -130,6 +146,7 @@ export class PathTracer {
     this.seed = options.seed ?? 0;
     this.sampler = options.sampler ?? 'kronecker';
     this.russianRoulette = options.russianRoulette ?? false;
+    this.adaptive = options.adaptive ?? false;
     this.keepAovs = options.aovs ?? false;
     if (options.pathsPerDraw !== undefined) this.pathsPerDraw = options.pathsPerDraw;
     this.gl = createContext(this.canvas, options.preserveDrawingBuffer ?? false);
@@ -219,6 +236,8 @@ export class PathTracer {
     if (this.resources) {
       this.resources.sums.dispose();
       this.resources.sums = new PingPong(this.gl, this.size.width, this.size.height);
+      this.resources.mean?.dispose();
+      this.resources.mean = null;
       this.resources.aov?.resize(this.size.width, this.size.height);
       this.resources.trace.setScene(this.scene, this.assets, this.size.width, this.size.height);
     }
@@ -233,6 +252,7 @@ export class PathTracer {
   /** Discards the accumulated samples. */
   reset(): void {
     this.samples = 0;
+    this.cells = null;
     this.pass = null;
     this.generation++;
     this.resources?.sums.clear();
@@ -260,6 +280,12 @@ export class PathTracer {
   render(samples = 1, samplesPerDraw = samples): number {
     const r = this.resources;
     if (!r || this.gl.isContextLost()) return this.samples;
+    if (this.adaptive && this.tiles.usable) this.renderAdaptive(r, Math.max(0, Math.floor(samples)), samplesPerDraw);
+    else this.renderUniform(r, samples, samplesPerDraw);
+    return this.samples;
+  }
+
+  private renderUniform(r: Resources, samples: number, samplesPerDraw: number): void {
     let left = samples;
     if (left > 0 && this.pass) {
       this.drawTiles(r, Infinity);
@@ -277,7 +303,43 @@ export class PathTracer {
         left -= 1;
       }
     }
-    return this.samples;
+  }
+
+  /**
+   * Adaptive sampling: uniform samples up to ADAPTIVE_START (then the noise
+   * snapshot), then rounds of `samples` x pixels paths shared
+   * by the cells' noise (render/adaptive.ts), in draws of at most
+   * pathsPerDraw paths.
+   */
+  private renderAdaptive(r: Resources, samples: number, samplesPerDraw: number): void {
+    let left = samples;
+    if (!this.cells) {
+      const n = Math.min(left, ADAPTIVE_START - this.samples);
+      this.renderUniform(r, n, samplesPerDraw);
+      left -= n;
+      if (this.samples < ADAPTIVE_START) return;
+      const layout = this.tiles;
+      this.cells = new AdaptiveCells(cellGrid(layout.width, layout.height, layout.size), this.samples);
+      this.cells.takeSnapshot(r.sums.read.read());
+    }
+    if (left <= 0) return;
+    const { width, height } = this.size;
+    const cells = this.cells;
+    const plan = cells.plan(r.sums.read.read(), left * width * height);
+    const remaining = plan.slice();
+    const cellPixels = this.tiles.size * this.tiles.size;
+    for (;;) {
+      const active = remaining.reduce((n, k) => n + (k > 0 ? 1 : 0), 0);
+      if (active === 0) break;
+      const cap = Math.max(1, Math.floor(this.pathsPerDraw / (active * cellPixels)));
+      const draw = remaining.map((k) => Math.min(k, cap));
+      r.sums.copyReadToWrite();
+      r.trace.drawCells(r.sums, this.tiles, cells.counts, draw, this.seed);
+      r.sums.swap();
+      cells.add(draw);
+      draw.forEach((k, c) => (remaining[c] -= k));
+    }
+    this.samples = Math.floor(cells.paths / (width * height));
   }
 
   /**
@@ -292,6 +354,11 @@ export class PathTracer {
     const r = this.resources;
     if (!r || this.gl.isContextLost() || !(paths > 0)) return 0;
     const pixels = this.size.width * this.size.height;
+    if (this.adaptive && this.tiles.usable) {
+      const n = Math.max(1, Math.round(paths / pixels));
+      this.render(n);
+      return n * pixels;
+    }
     const perTile = this.tiles.pixelsPerTile;
     let left = paths;
     let traced = 0;
@@ -430,6 +497,7 @@ export class PathTracer {
   /** What display() shows: showImage's image (as a mean of 1 sample), the complete samples, or the first sample's tiles so far. */
   private shown(r: Resources): { sums: FloatTarget; samples: number } {
     if (r.shown) return { sums: r.shown, samples: 1 };
+    if (this.cells) return { sums: this.adaptiveMean(r), samples: 1 };
     // Both targets are cleared at a reset, so the tiles not yet drawn are black.
     if (this.samples === 0 && this.pass) return { sums: r.sums.write, samples: 1 };
     return { sums: r.sums.read, samples: this.samples };
@@ -456,6 +524,18 @@ export class PathTracer {
     gl.bindTexture(gl.TEXTURE_2D, null);
   }
 
+  /** The adaptive accumulation's mean (per-cell counts), in a target display() can read as one sample. */
+  private adaptiveMean(r: Resources): FloatTarget {
+    const cells = this.cells!;
+    const { width, height } = this.size;
+    r.mean ??= new FloatTarget(this.gl, width, height);
+    const gl = this.gl;
+    gl.bindTexture(gl.TEXTURE_2D, r.mean.texture);
+    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RGBA, gl.FLOAT, meanImage(cells.grid, r.sums.read.read(), cells.counts));
+    gl.bindTexture(gl.TEXTURE_2D, null);
+    return r.mean;
+  }
+
   /** Whether display() shows an image given to showImage rather than the running mean. */
   get showsImage(): boolean {
     return !!this.resources?.shown;
@@ -468,6 +548,7 @@ export class PathTracer {
   readLinear(): Float32Array {
     const r = this.requireResources();
     const sums = r.sums.read.read();
+    if (this.cells) return flipRows(meanImage(this.cells.grid, sums, this.cells.counts), this.size.width, this.size.height, 4);
     const scale = this.samples > 0 ? 1 / this.samples : 0;
     return flipRows(sums.map((v) => v * scale), this.size.width, this.size.height, 4);
   }
@@ -497,7 +578,7 @@ export class PathTracer {
    */
   accumulation(): { framebuffer: WebGLFramebuffer; width: number; height: number; samples: number; generation: number } | null {
     const r = this.resources;
-    if (!r || this.gl.isContextLost()) return null;
+    if (!r || this.gl.isContextLost() || this.cells) return null;
     return { framebuffer: r.sums.read.framebuffer, ...this.size, samples: this.samples, generation: this.generation };
   }
 
@@ -508,7 +589,7 @@ export class PathTracer {
    */
   restoreAccumulation(sums: Float32Array, samples: number, generation: number, width: number, height: number): boolean {
     const r = this.resources;
-    if (!r || this.gl.isContextLost() || generation !== this.generation) return false;
+    if (!r || this.gl.isContextLost() || generation !== this.generation || this.cells) return false;
     if (width !== this.size.width || height !== this.size.height || sums.length !== width * height * 4) return false;
     const gl = this.gl;
     gl.bindTexture(gl.TEXTURE_2D, r.sums.read.texture);
@@ -540,7 +621,7 @@ export class PathTracer {
     // An empty vertex array: the full-screen triangle comes from gl_VertexID.
     this.gl.bindVertexArray(this.gl.createVertexArray());
     const aov = this.keepAovs ? new AovPass(this.gl, this.size.width, this.size.height, this.sampler) : null;
-    return { trace, display, sums, aov, shown: null };
+    return { trace, display, sums, aov, shown: null, mean: null };
   }
 
   private disposeResources(): void {
@@ -552,6 +633,7 @@ export class PathTracer {
     r.sums.dispose();
     r.aov?.dispose();
     r.shown?.dispose();
+    r.mean?.dispose();
   }
 
   private requireResources(): Resources {
@@ -577,6 +659,7 @@ export class PathTracer {
     event.preventDefault(); // allow the browser to restore it
     this.resources = null;  // the handles died with the context
     this.samples = 0;
+    this.cells = null;
     this.pass = null;
     this.emit('contextlost');
   };
@@ -585,6 +668,7 @@ export class PathTracer {
     requireFloatTargets(this.gl);
     this.resources = this.createResources();
     this.samples = 0;
+    this.cells = null;
     this.pass = null;
     this.emit('contextrestored');
   };

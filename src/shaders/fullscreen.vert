@@ -3,8 +3,14 @@
 // as points: tile number uTiles.w + gl_VertexID is grid cell
 // (number * step) mod count, row-major, a square of uTileGrid.x pixels
 // (moved inward at the right and top edges to end there).
+// Or, when uTileList, the cells listed in the vertex attribute aCell (grid
+// cell numbers, row-major: adaptive sampling's cells, src/render/adaptive.ts).
 uniform uvec4 uTiles;    // count of tiles (0: full screen), step, tiles per row, first tile
 uniform uvec3 uTileGrid; // tile side, target width and height, in pixels
+uniform bool uTileList;
+// A float, so that programs that never enable it read the default generic
+// attribute (a float) without a type mismatch; cell numbers stay below 2^16.
+layout(location = 0) in float aCell;
 
 void main() {
   gl_PointSize = 1.0;
@@ -13,7 +19,9 @@ void main() {
     gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
     return;
   }
-  uint cell = ((uTiles.w + uint(gl_VertexID)) * uTiles.y) % uTiles.x;
+  uint listed = uint(aCell);
+  uint ordered = ((uTiles.w + uint(gl_VertexID)) * uTiles.y) % uTiles.x;
+  uint cell = uTileList ? listed : ordered;
   uint size = uTileGrid.x;
   uint x0 = min((cell % uTiles.z) * size, uTileGrid.y - size);
   uint y0 = min((cell / uTiles.z) * size, uTileGrid.z - size);

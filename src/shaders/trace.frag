@@ -7,6 +7,13 @@ uniform sampler2D uAccumulation;
 uniform uint uFirstSample;
 uniform uint uSamplesPerDraw;
 uniform uint uSeed;
+// Adaptive sampling (src/render/adaptive.ts), when uCellSize > 0: each cell
+// of uCellSize pixels has its own first sample and count, (x, y) of its
+// texel, instead of uFirstSample and uSamplesPerDraw. Looked up by the
+// pixel's own cell, so a pixel drawn by a neighbour's tile (tiles at the
+// edges overlap) still adds its own samples.
+uniform highp usampler2D uCellSamples;
+uniform uint uCellSize;
 
 out vec4 outSum;
 
@@ -35,6 +42,11 @@ void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 sum = texelFetch(uAccumulation, pixel, 0);
   rngBeginPixel(uvec2(pixel), uSeed);
+  uvec2 whole = uvec2(uFirstSample, uSamplesPerDraw);
+  uvec2 own = texelFetch(uCellSamples, pixel / int(max(uCellSize, 1u)), 0).xy;
+  uvec2 samples = uCellSize > 0u ? own : whole;  // names only: one select
+  uint firstSample = samples.x;
+  uint sampleCount = samples.y;
   uint next = 0u;
   for (;;) {
     // Start samples until one scatters; finish those that do not.
@@ -43,8 +55,8 @@ void main() {
     Hit hit;
     Material material;
     for (;;) {
-      if (scattering || next >= uSamplesPerDraw) break;
-      rngBeginSample(uFirstSample + next);
+      if (scattering || next >= sampleCount) break;
+      rngBeginSample(firstSample + next);
       next++;
       vec3 origin;
       generateCameraRay(vec2(pixel), origin, direction);
@@ -55,7 +67,7 @@ void main() {
     }
     if (!scattering) break;
     accumulate(sum, traceRadiance(direction, hit, material, radiance));
-    if (next >= uSamplesPerDraw) break;
+    if (next >= sampleCount) break;
   }
   outSum = sum;
 }

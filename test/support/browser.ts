@@ -54,10 +54,19 @@ export async function renderLinear(
   spp: number,
   seed: number,
   size: { width: number; height: number } = scene.image,
+  adaptive = false,
 ): Promise<LinearImage> {
-  await session.load(scene, { ...size, seed }, fixtureFiles(scene));
-  const count = await session.render(spp);
-  expect(count).toBe(spp);
+  await session.load(scene, { ...size, seed, adaptive }, fixtureFiles(scene));
+  if (adaptive) {
+    // Rounds that double, as the command line's growing chunks: each one
+    // re-estimates the noise (PathTracerOptions.adaptive).
+    let count = 0;
+    for (let round = 4; count < spp; round *= 2) count = await session.render(Math.min(round, spp - count));
+    expect(Math.abs(count - spp)).toBeLessThanOrEqual(1);
+  } else {
+    const count = await session.render(spp);
+    expect(count).toBe(spp);
+  }
   const data = await session.readLinear();
   const image = { ...size, channels: 4, data };
   assertNotBlank(image);

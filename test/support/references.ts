@@ -42,6 +42,8 @@ export interface ReferenceScene {
   block?: number;
   worstBlock?: number;
   referenceSpp?: number;
+  /** Render with adaptive sampling (PathTracerOptions.adaptive). */
+  adaptive?: boolean;
 }
 
 const BATCHES = 8;
@@ -51,12 +53,13 @@ export function describeReferences(title: string, scenes: Record<string, Referen
   describe(title, () => {
     const session = useRenderSession();
 
-    for (const [name, { spp, block: BLOCK = DEFAULT_BLOCK, worstBlock: WORST_BLOCK = DEFAULT_WORST_BLOCK, referenceSpp = 16384 }] of Object.entries(scenes)) {
-      it(`${name} at ${spp} spp matches its reference within the measured noise`, async () => {
+    for (const [name, { spp, block: BLOCK = DEFAULT_BLOCK, worstBlock: WORST_BLOCK = DEFAULT_WORST_BLOCK, referenceSpp = 16384, adaptive = false }] of Object.entries(scenes)) {
+      it(`${name} at ${spp} spp${adaptive ? ' (adaptive)' : ''} matches its reference within the measured noise`, async () => {
         const scene = loadFixtureScene(name);
         const reference = loadReference(name);
         const batches: LinearImage[] = [];
-        for (let seed = 1; seed <= BATCHES; seed++) batches.push(await renderLinear(session(), scene, spp / BATCHES, seed));
+        // Independent batches (seeds): their spread is the estimator's, adaptive or not.
+        for (let seed = 1; seed <= BATCHES; seed++) batches.push(await renderLinear(session(), scene, spp / BATCHES, seed, scene.image, adaptive));
         const stats = blockStats(scene, batches, reference, BLOCK, referenceSpp);
         const { image, variance } = stats;
         const { worstZ, worstZBlock, worstSigma, worstError } = summarize(stats);

@@ -297,6 +297,14 @@ describe('render with a fake session', () => {
     expect(stderr.lines[0]).toMatch(/^rendered 256x192 at 8 spp in [\d.]+ s \(.* paths\/s\) -> .*seed\.png$/);
   });
 
+  it('--adaptive asks the page for adaptive sampling, and only then', async () => {
+    const out = join(dir, 'adaptive.png');
+    const { code, log } = await cli(['render', fixture('seed'), '-o', out, '--spp', '8', '--width', '32', '--height', '20', '--adaptive']);
+    expect(code).toBe(0);
+    expect(log.loads[0].options).toEqual({ width: 32, height: 20, seed: 0, adaptive: true });
+    expect(log.renders.reduce((a, b) => a + b, 0)).toBe(8);
+  });
+
   it('defaults to 256 spp, and passes seed, size, exposure and tonemap through', async () => {
     const out = join(dir, 'out.png');
     const hdr = join(dir, 'out.pfm');

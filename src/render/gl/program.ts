@@ -57,7 +57,7 @@ export class Program {
       if (loc === null) continue;
       const v = typeof value === 'boolean' ? Number(value) : value;
       switch (types[name]) {
-        case 'int': case 'sampler2D': case 'sampler2DArray': gl.uniform1i(loc, v as number); break;
+        case 'int': case 'bool': case 'sampler2D': case 'usampler2D': case 'sampler2DArray': gl.uniform1i(loc, v as number); break;
         case 'uint': gl.uniform1ui(loc, v as number); break;
         case 'uvec3': gl.uniform3uiv(loc, v as ArrayLike<number> as Uint32List); break;
         case 'uvec4': gl.uniform4uiv(loc, v as ArrayLike<number> as Uint32List); break;

@@ -49,7 +49,11 @@ export class FloatTarget {
 export class PingPong {
   private targets: [FloatTarget, FloatTarget];
 
-  constructor(gl: WebGL2RenderingContext, width: number, height: number) {
+  constructor(
+    private readonly gl: WebGL2RenderingContext,
+    width: number,
+    height: number,
+  ) {
     this.targets = [new FloatTarget(gl, width, height), new FloatTarget(gl, width, height)];
     this.clear();
   }
@@ -59,6 +63,17 @@ export class PingPong {
 
   swap(): void {
     this.targets = [this.targets[1], this.targets[0]];
+  }
+
+  /** Makes `write` a copy of `read` (a draw then changes only the pixels it covers). */
+  copyReadToWrite(): void {
+    const gl = this.gl;
+    const { width, height } = this.read;
+    gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.read.framebuffer);
+    gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, this.write.framebuffer);
+    gl.blitFramebuffer(0, 0, width, height, 0, 0, width, height, gl.COLOR_BUFFER_BIT, gl.NEAREST);
+    gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
+    gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
   }
 
   clear(): void {

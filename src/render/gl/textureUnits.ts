@@ -30,6 +30,8 @@ export const TEXTURE_UNITS = {
   texturesFloat: 13,
   /** The emitter-choice tables (lights/lights.glsl uLightChoice). */
   lightChoice: 14,
+  /** Adaptive sampling's per-cell first sample and count (trace.frag uCellSamples). */
+  cellSamples: 15,
 } as const;
 
 /** The environment map's units in the form EnvironmentTextures takes. */

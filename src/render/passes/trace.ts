@@ -11,13 +11,14 @@ import { areaMean, textureEmissionMeans } from '../geometry/records';
 import { SceneError } from '../../scene/schema';
 import { BLOCK_VEC4S, DATA_ROWS, LIGHT_CHOICE_WIDTH, SCENE_ROW_TEXELS } from '../layout/scene';
 import { createDataTexture } from '../gl/dataTexture';
+import { CellTable } from '../gl/cellTable';
 import { AssetTextures, environmentDistribution } from './assetTextures';
 import { prepareWorldMeshes, type PrebuiltBvh, type WorldMeshes } from '../geometry/world';
 import { BASE_FEATURES, packScene, type SceneFeatures } from '../packScene';
 import type { SamplerKind } from '../sampling';
 import { featureDefines, sceneDefines } from '../shaderChunks';
 import { TRACE_CHUNKS, VERTEX_CHUNKS } from '../shaderSources';
-import { FULL_SCREEN, type TileRun } from '../tiles';
+import { FULL_SCREEN, type TileLayout, type TileRun } from '../tiles';
 
 const featureKey = (f: SceneFeatures) => JSON.stringify(f);
 
@@ -39,6 +40,9 @@ const UNIFORM_TYPES: Record<string, string> = {
   uLightChoice: 'sampler2D',
   uTiles: 'uvec4',
   uTileGrid: 'uvec3',
+  uTileList: 'bool',
+  uCellSamples: 'usampler2D',
+  uCellSize: 'uint',
 };
 
 const SCENE_BLOCK_BINDING = 0;
@@ -64,6 +68,8 @@ export class TracePass {
   private readonly sceneTexture: WebGLTexture;
   /** The emitter-choice tables (render/lightChoice.ts), LIGHT_CHOICE_WIDTH wide; `rows` of them. */
   private lightChoice: { texture: WebGLTexture; rows: number } | null = null;
+  /** Adaptive sampling's per-cell samples (drawCells). */
+  private readonly cells: CellTable;
 
   private readonly defines: Record<string, string | number>;
   /** The meshes prepared for the last scene (kept: the next keeps its copies where they still fit). */
@@ -84,6 +90,7 @@ export class TracePass {
     this.program = this.programFor(BASE_FEATURES);
     this.programFor({ ...BASE_FEATURES, guides: 1 });
     this.assets = new AssetTextures(gl);
+    this.cells = new CellTable(gl);
     this.sceneBuffer = gl.createBuffer()!;
     gl.bindBuffer(gl.UNIFORM_BUFFER, this.sceneBuffer);
     gl.bufferData(gl.UNIFORM_BUFFER, BLOCK_VEC4S * 16, gl.DYNAMIC_DRAW);
@@ -181,6 +188,7 @@ export class TracePass {
         uAccumulation: TEXTURE_UNITS.accumulation,
         uSceneData: TEXTURE_UNITS.sceneData,
         uLightChoice: TEXTURE_UNITS.lightChoice,
+        uCellSamples: TEXTURE_UNITS.cellSamples,
       },
       UNIFORM_TYPES,
     );
@@ -222,6 +230,8 @@ export class TracePass {
     gl.bindTexture(gl.TEXTURE_2D, this.sceneTexture);
     gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNITS.lightChoice);
     gl.bindTexture(gl.TEXTURE_2D, this.lightChoice?.texture ?? null);
+    gl.activeTexture(gl.TEXTURE0 + TEXTURE_UNITS.cellSamples);
+    gl.bindTexture(gl.TEXTURE_2D, this.cells.texture);
     gl.activeTexture(gl.TEXTURE0);
   }
 
@@ -235,7 +245,7 @@ export class TracePass {
   draw(targets: PingPong, firstSample: number, samples: number, seed: number, tiles: TileRun | null = null): void {
     const gl = this.gl;
     this.program.use().setUniforms(
-      { uFirstSample: firstSample, uSamplesPerDraw: samples, uSeed: seed >>> 0, ...(tiles ? tiles.layout.uniforms(tiles) : FULL_SCREEN) },
+      { uFirstSample: firstSample, uSamplesPerDraw: samples, uSeed: seed >>> 0, uCellSize: 0, uTileList: false, ...(tiles ? tiles.layout.uniforms(tiles) : FULL_SCREEN) },
       UNIFORM_TYPES,
     );
     this.bindSceneData(this.program);
@@ -247,7 +257,41 @@ export class TracePass {
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
   }
 
+  /**
+   * One draw of adaptive sampling (src/render/adaptive.ts): writes the sums
+   * read from `targets.read` plus, for each cell of `layout`'s grid,
+   * `samples[c]` samples numbered from `first[c]` into `targets.write`, over
+   * the cells with samples only (one point sprite each; the rest of
+   * `targets.write` is left as it was). Does not swap.
+   */
+  drawCells(targets: PingPong, layout: TileLayout, first: Uint32Array, samples: Uint32Array, seed: number): void {
+    const gl = this.gl;
+    const cells = layout.columns * layout.rows;
+    const texels = new Uint32Array(cells * 4);
+    const listed: number[] = [];
+    for (let c = 0; c < cells; c++) {
+      texels[c * 4] = first[c];
+      texels[c * 4 + 1] = samples[c];
+      if (samples[c] > 0) listed.push(c);
+    }
+    if (listed.length === 0) return;
+    this.cells.upload(layout.columns, layout.rows, texels, new Float32Array(listed));
+    this.program.use().setUniforms(
+      { uSeed: seed >>> 0, uCellSize: layout.size, uTileList: true, uTiles: [layout.count, layout.step, layout.columns, 0], uTileGrid: [layout.size, layout.width, layout.height] },
+      UNIFORM_TYPES,
+    );
+    this.bindSceneData(this.program);
+    gl.bindTexture(gl.TEXTURE_2D, targets.read.texture);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, targets.write.framebuffer);
+    gl.viewport(0, 0, targets.write.width, targets.write.height);
+    this.cells.enableList();
+    gl.drawArrays(gl.POINTS, 0, listed.length);
+    this.cells.disableList();
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  }
+
   dispose(): void {
+    this.cells.dispose();
     for (const program of this.programs.values()) program.dispose();
     this.assets.dispose();
     this.gl.deleteBuffer(this.sceneBuffer);
