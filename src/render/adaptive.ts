@@ -128,7 +128,7 @@ export function allocate(grid: CellGrid, variances: ArrayLike<number>, paths: nu
   const pixels = cellPixels(grid);
   const cells = pixels.length;
   const totalPixels = grid.width * grid.height;
-  const deviations = Array.from(variances, (v) => (Number.isFinite(v) && v > 0 ? Math.sqrt(v) : NaN));
+  const deviations = Array.from(variances, (v) => (Number.isFinite(v) && v >= 0 ? Math.sqrt(v) : NaN));
   const known = deviations.filter((d) => !Number.isNaN(d));
   const fallback = known.length > 0 ? known.reduce((a, b) => a + b, 0) / known.length : 1;
   let weightSum = 0;

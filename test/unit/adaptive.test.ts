@@ -124,7 +124,12 @@ describe('adaptive sampling: the allocation', () => {
     expect(samples[7]).toBeCloseTo(expected(4), -0.5);
   });
 
-  it('caps a cell at ADAPTIVE_MAX_RATIO times uniform and gives the rest to the others', () => {
+  it('gives a noiseless cell (a plain sky) only the floor', () => {
+    const samples = allocate(grid, [1, 1, 1, 1, 1, 1, 1, 0], 64 * 32 * 100, new Float64Array(8));
+    expect(samples[7]).toBeCloseTo(ADAPTIVE_FLOOR * 100, -0.5);
+  });
+
+    it('caps a cell at ADAPTIVE_MAX_RATIO times uniform and gives the rest to the others', () => {
     const carry = new Float64Array(8);
     const samples = allocate(grid, [1e-8, 1e-8, 1e-8, 1e-8, 1e-8, 1e-8, 1e-8, 1e6], 64 * 32 * 10, carry);
     expect(samples[7]).toBeLessThanOrEqual(ADAPTIVE_MAX_RATIO * 10);
