@@ -36,6 +36,20 @@ describe('adaptive sampling', () => {
     expect(mean).toBeLessThan(0.85);
   }, 600_000);
 
+  it('works on images smaller than a cell, and starts over after a reset', async () => {
+    const scene = loadFixtureScene('seed');
+    for (const size of [{ width: 1, height: 1 }, { width: 5, height: 3 }, { width: 37, height: 21 }]) {
+      const image = await renderLinear(session(), scene, 20, 3, size, true);
+      expect(image.data.every((v) => Number.isFinite(v))).toBe(true);
+    }
+    // A restart (reset) mid-way starts the uniform samples and the snapshot again.
+    await session().render(8);
+    await session().reset();
+    expect(await session().render(6)).toBe(6);
+    const data = await session().readLinear();
+    expect(data.every((v) => Number.isFinite(v))).toBe(true);
+  }, 120_000);
+
   it('displays the mean of its per-cell counts', async () => {
     const scene = loadFixtureScene('bunny');
     const size = { width: 96, height: 72 };
