@@ -77,7 +77,7 @@ function buildProgram(io: Required<Pick<RunOptions, 'stdout' | 'stderr'>>, optio
     .option('--height <px>', "image height (default: the scene's; alone, keeps the scene's aspect)")
     .option('--exposure <ev>', 'exposure in stops: displayed = radiance * 2^ev (default: 0)')
     .option('--tonemap <name>', 'tone-mapping operator, e.g. none, aces (default: none)')
-    .option('--adaptive', 'adaptive sampling: after 4 spp, spend the samples where the image is noisiest (16x16-pixel cells); --spp is then the mean per pixel')
+    .option('--adaptive', 'adaptive sampling: after 4 spp, spend the samples where the image is noisiest (8x8-pixel cells); --spp is then the mean per pixel')
     .option('--denoise', "denoise the final image with Open Image Denoise's network: the PNG and --hdr are the denoised image")
     .option('--aov <albedo.pfm,normal.pfm>', "also write the denoiser's guides as PFM: albedo (linear, [0,1]) and normal ([-1,1], zero for the sky)")
     .option('--camera [n]', CAMERA_HELP)

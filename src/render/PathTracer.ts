@@ -24,7 +24,7 @@ import { TracePass } from './passes/trace';
 import type { PrebuiltBvh } from './geometry/world';
 import type { SamplerKind } from './sampling';
 import { TileLayout, type TileRun } from './tiles';
-import { ADAPTIVE_START, AdaptiveCells, cellGrid, meanImage } from './adaptive';
+import { ADAPTIVE_CELL, ADAPTIVE_START, AdaptiveCells, cellGrid, meanImage } from './adaptive';
 
 export interface PathTracerOptions {
   /** Render resolution; defaults to the scene's image size. */
@@ -45,7 +45,7 @@ export interface PathTracerOptions {
   /**
    * Adaptive sampling (render/adaptive.ts): after ADAPTIVE_START (4) samples
    * per pixel, render(n) spends n samples per pixel's worth of paths where
-   * the image is noisiest, cell by cell of 16x16 pixels; sampleCount is
+   * the image is noisiest, cell by cell of 8x8 pixels; sampleCount is
    * then the mean per pixel. Less error for the same time where the noise
    * is uneven (a caustic, a bright reflection); the image then depends on
    * how the samples were asked for, not only on the seed. Default false.
@@ -319,7 +319,7 @@ export class PathTracer {
       left -= n;
       if (this.samples < ADAPTIVE_START) return;
       const layout = this.tiles;
-      this.cells = new AdaptiveCells(cellGrid(layout.width, layout.height, layout.size), this.samples);
+      this.cells = new AdaptiveCells(cellGrid(layout.width, layout.height, Math.min(ADAPTIVE_CELL, layout.size)), this.samples);
       this.cells.takeSnapshot(r.sums.read.read());
     }
     if (left <= 0) return;
@@ -327,14 +327,14 @@ export class PathTracer {
     const cells = this.cells;
     const plan = cells.plan(r.sums.read.read(), left * width * height);
     const remaining = plan.slice();
-    const cellPixels = this.tiles.size * this.tiles.size;
+    const cellPixels = cells.grid.size * cells.grid.size;
     for (;;) {
       const active = remaining.reduce((n, k) => n + (k > 0 ? 1 : 0), 0);
       if (active === 0) break;
       const cap = Math.max(1, Math.floor(this.pathsPerDraw / (active * cellPixels)));
       const draw = remaining.map((k) => Math.min(k, cap));
       r.sums.copyReadToWrite();
-      r.trace.drawCells(r.sums, this.tiles, cells.counts, draw, this.seed);
+      r.trace.drawCells(r.sums, cells.grid, cells.counts, draw, this.seed);
       r.sums.swap();
       cells.add(draw);
       draw.forEach((k, c) => (remaining[c] -= k));

@@ -18,7 +18,8 @@ import { BASE_FEATURES, packScene, type SceneFeatures } from '../packScene';
 import type { SamplerKind } from '../sampling';
 import { featureDefines, sceneDefines } from '../shaderChunks';
 import { TRACE_CHUNKS, VERTEX_CHUNKS } from '../shaderSources';
-import { FULL_SCREEN, type TileLayout, type TileRun } from '../tiles';
+import { FULL_SCREEN, type TileRun } from '../tiles';
+import type { CellGrid } from '../adaptive';
 
 const featureKey = (f: SceneFeatures) => JSON.stringify(f);
 
@@ -259,14 +260,14 @@ export class TracePass {
 
   /**
    * One draw of adaptive sampling (src/render/adaptive.ts): writes the sums
-   * read from `targets.read` plus, for each cell of `layout`'s grid,
+   * read from `targets.read` plus, for each cell of `grid`,
    * `samples[c]` samples numbered from `first[c]` into `targets.write`, over
    * the cells with samples only (one point sprite each; the rest of
    * `targets.write` is left as it was). Does not swap.
    */
-  drawCells(targets: PingPong, layout: TileLayout, first: Uint32Array, samples: Uint32Array, seed: number): void {
+  drawCells(targets: PingPong, grid: CellGrid, first: Uint32Array, samples: Uint32Array, seed: number): void {
     const gl = this.gl;
-    const cells = layout.columns * layout.rows;
+    const cells = grid.columns * grid.rows;
     const texels = new Uint32Array(cells * 4);
     const listed: number[] = [];
     for (let c = 0; c < cells; c++) {
@@ -275,9 +276,10 @@ export class TracePass {
       if (samples[c] > 0) listed.push(c);
     }
     if (listed.length === 0) return;
-    this.cells.upload(layout.columns, layout.rows, texels, new Float32Array(listed));
+    this.cells.upload(grid.columns, grid.rows, texels, new Float32Array(listed));
     this.program.use().setUniforms(
-      { uSeed: seed >>> 0, uCellSize: layout.size, uTileList: true, uTiles: [layout.count, layout.step, layout.columns, 0], uTileGrid: [layout.size, layout.width, layout.height] },
+      // uTiles.x and .y only keep the unused tile order's arithmetic defined.
+      { uSeed: seed >>> 0, uCellSize: grid.size, uTileList: true, uTiles: [cells, 1, grid.columns, 0], uTileGrid: [grid.size, grid.width, grid.height] },
       UNIFORM_TYPES,
     );
     this.bindSceneData(this.program);
