@@ -17,9 +17,6 @@ import { decodePfm } from '../src/image/pfm';
 import { relativeMse, type LinearImage } from '../src/node/imageMetrics';
 import { openRenderSession, type LoadOptions, type RenderSession } from '../src/node/session';
 import type { SamplerKind } from '../src/render/sampling';
-
-/** What a row of ours runs: a sampler, or 'adaptive' (the Kronecker sampler with PathTracerOptions.adaptive). */
-export type BenchSampler = SamplerKind | 'adaptive';
 import { bakedTextureFile, exportMitsuba, meshPlyFile } from '../src/scene/mitsuba';
 import { resolveFileMaterials } from '../src/scene/fileMaterials';
 import type { SceneAssets } from '../src/scene/assets';
@@ -28,6 +25,9 @@ import { readSceneFiles } from '../src/node/sceneFiles';
 import { fileURLToPath } from 'node:url';
 import type { Scene } from '../src/scene/types';
 import { gitRevision, machineInfo, projectRoot, type MachineInfo } from './common';
+
+/** What a row of ours runs: a sampler, or 'adaptive' (the Kronecker sampler with PathTracerOptions.adaptive). */
+export type BenchSampler = SamplerKind | 'adaptive';
 
 export const FIXTURES = new URL('test/fixtures/', projectRoot());
 

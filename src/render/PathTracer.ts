@@ -313,6 +313,8 @@ export class PathTracer {
    */
   private renderAdaptive(r: Resources, samples: number, samplesPerDraw: number): void {
     let left = samples;
+    // The sums as read back for the snapshot, when this call takes it: plan() reads the same.
+    let sums: Float32Array | null = null;
     if (!this.cells) {
       const n = Math.min(left, ADAPTIVE_START - this.samples);
       this.renderUniform(r, n, samplesPerDraw);
@@ -320,12 +322,13 @@ export class PathTracer {
       if (this.samples < ADAPTIVE_START) return;
       const layout = this.tiles;
       this.cells = new AdaptiveCells(cellGrid(layout.width, layout.height, Math.min(ADAPTIVE_CELL, layout.size)), this.samples);
-      this.cells.takeSnapshot(r.sums.read.read());
+      sums = r.sums.read.read();
+      this.cells.takeSnapshot(sums);
     }
     if (left <= 0) return;
     const { width, height } = this.size;
     const cells = this.cells;
-    const plan = cells.plan(r.sums.read.read(), left * width * height);
+    const plan = cells.plan(sums ?? r.sums.read.read(), left * width * height);
     const remaining = plan.slice();
     const cellPixels = cells.grid.size * cells.grid.size;
     for (;;) {

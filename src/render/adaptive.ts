@@ -8,11 +8,13 @@
  * 16x16 (bench/adaptive.ts, 3 seeds of 6 s: at equal time against uniform,
  * bunny 0.60 against 0.70, instanced 0.85 against 0.91, bench 1.00 against
  * 1.02): smaller cells follow the noise closer, and 64 pixels x 3 channels
- * still estimate a cell's variance (4x4 cells: bunny 0.70, too rough). A round of `paths` paths is
- * shared among the cells so that each cell's paths are proportional to its
- * pixel count times its standard deviation relative to its brightness: for
- * a relative squared error summed over pixels, that is the allocation of
- * least error for the paths spent (Lagrange: n_c proportional to sigma_c).
+ * still estimate a cell's variance (4x4 cells: bunny 0.70, too rough).
+ *
+ * A round of `paths` paths is shared among the cells so that each cell's
+ * paths are proportional to its pixel count times its standard deviation
+ * relative to its brightness: for a relative squared error summed over
+ * pixels, that is the allocation of least error for the paths spent
+ * (Lagrange: n_c proportional to sigma_c).
  * A fixed share, ADAPTIVE_FLOOR, stays uniform, so no cell starves because
  * its noise was underestimated (a firefly not yet seen).
  *

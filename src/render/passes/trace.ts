@@ -249,12 +249,20 @@ export class TracePass {
       { uFirstSample: firstSample, uSamplesPerDraw: samples, uSeed: seed >>> 0, uCellSize: 0, uTileList: false, ...(tiles ? tiles.layout.uniforms(tiles) : FULL_SCREEN) },
       UNIFORM_TYPES,
     );
+    this.drawSums(targets, () => {
+      if (tiles) gl.drawArrays(gl.POINTS, 0, tiles.count);
+      else gl.drawArrays(gl.TRIANGLES, 0, 3);
+    });
+  }
+
+  /** Runs `drawCall` with the uniforms set: the scene bound, `targets.read` as uAccumulation, into `targets.write`. */
+  private drawSums(targets: PingPong, drawCall: () => void): void {
+    const gl = this.gl;
     this.bindSceneData(this.program);
     gl.bindTexture(gl.TEXTURE_2D, targets.read.texture);
     gl.bindFramebuffer(gl.FRAMEBUFFER, targets.write.framebuffer);
     gl.viewport(0, 0, targets.write.width, targets.write.height);
-    if (tiles) gl.drawArrays(gl.POINTS, 0, tiles.count);
-    else gl.drawArrays(gl.TRIANGLES, 0, 3);
+    drawCall();
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
   }
 
@@ -282,14 +290,11 @@ export class TracePass {
       { uSeed: seed >>> 0, uCellSize: grid.size, uTileList: true, uTiles: [cells, 1, grid.columns, 0], uTileGrid: [grid.size, grid.width, grid.height] },
       UNIFORM_TYPES,
     );
-    this.bindSceneData(this.program);
-    gl.bindTexture(gl.TEXTURE_2D, targets.read.texture);
-    gl.bindFramebuffer(gl.FRAMEBUFFER, targets.write.framebuffer);
-    gl.viewport(0, 0, targets.write.width, targets.write.height);
-    this.cells.enableList();
-    gl.drawArrays(gl.POINTS, 0, listed.length);
-    this.cells.disableList();
-    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    this.drawSums(targets, () => {
+      this.cells.enableList();
+      gl.drawArrays(gl.POINTS, 0, listed.length);
+      this.cells.disableList();
+    });
   }
 
   dispose(): void {
